@@ -1,0 +1,1 @@
+"""The ball in a groove (Halsey & Ertas): equilibria, regime boundaries, tracing, export."""
