@@ -1,0 +1,212 @@
+r"""Residuals, analytic Jacobians, validity functions and seed points of the regime boundaries.
+
+Each boundary is the zero set of three equations in ``x = (gamma, delta, beta_L, upsilon)``
+(``shared/MODEL.md``, table "The boundaries"). With ``beta_R = pi - 2 gamma - beta_L``,
+``s = sin beta``, ``q = sqrt(s)``, ``n = s q`` (scaled normal force), ``A = cos beta_L + upsilon``,
+``B = cos beta_R - upsilon``, ``D = cos theta_R - cos theta_L = 2 sin gamma sin delta`` and ``c``
+the compliance ratio, the equations are written multiplied out, with no division by
+``sin theta_R`` or ``sin beta`` (the paper's Eqs. tran1 and tran2 are these divided through):
+
+=================  ===========================================================  ============
+equation           expression                                                   meaning
+=================  ===========================================================  ============
+torque (DR)        ``q_L A - q_R B``                                            ``T_L = T_R``
+horizontal (DR)    ``n_L sin theta_L - n_R sin theta_R + c q_L A D``            paper Eq. 2
+right rolls (RS)   ``c q_R B - k n_L``                                          ``T = k N_L``
+horizontal (RS)    ``n_L (sin theta_L + k D) - n_R sin theta_R``                Eq. 2, ``T = k N_L``
+limit              ``c A - k s_L``                                              ``T/N_L = k``, ``d_L = 0``
+no roll            ``upsilon``                                                  ``upsilon = 0``
+=================  ===========================================================  ============
+
+``dr_limit`` = (torque, horizontal DR, limit); ``rs_limit`` = (right rolls, horizontal RS, limit);
+``dr_no_roll`` = (torque, horizontal DR, no roll); ``rs_no_roll`` = (right rolls, horizontal RS,
+no roll). The Jacobians are derived by hand (product rule on the table above) and checked
+against central differences in the tests. ``d q_L / d beta_L = cos beta_L / (2 q_L)`` is
+unbounded as ``beta_L -> 0``: the ``upsilon = 0`` lines end there, at the corner
+``(pi/4, pi/4)``, which the tracer reports as a singular end.
+
+Validity functions are ``>= 0`` where the boundary is physical, also multiplied out:
+``k s_L - c A`` (``T/N_L <= k``), ``k s_R - c B`` (``T/N_R <= k``, which is ``mu <= k`` in RS),
+``c A - k s_L`` (``c d_L / Z >= 0``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from .parameters import Parameters
+
+__all__ = [
+    "BOUNDARY_NAMES",
+    "BoundarySystem",
+    "boundary_system",
+    "corner_point",
+    "dr_no_roll_branch_point",
+    "limit_seed",
+]
+
+BOUNDARY_NAMES = ("dr_limit", "rs_limit", "dr_no_roll", "rs_no_roll")
+REGIME_OF = {"dr_limit": "double_rolling", "rs_limit": "rolling_sliding",
+             "dr_no_roll": "double_rolling", "rs_no_roll": "rolling_sliding"}
+_PI = math.pi
+
+
+def _rows(x, k, c, system):
+    """Residual (3,) and Jacobian (3, 4) of one boundary system at ``x``; see module table."""
+    gamma, delta, beta_L, upsilon = float(x[0]), float(x[1]), float(x[2]), float(x[3])
+    beta_R = _PI - 2.0 * gamma - beta_L
+    s_L, c_L, s_R, c_R = math.sin(beta_L), math.cos(beta_L), math.sin(beta_R), math.cos(beta_R)
+    # Outside 0 <= beta_L, beta_R <= pi the state is not a contact: NaN, which the engine rejects.
+    q_L = math.sqrt(s_L) if s_L >= 0.0 else math.nan
+    q_R = math.sqrt(s_R) if s_R >= 0.0 else math.nan
+    n_L, n_R = s_L * q_L, s_R * q_R
+    A, B = c_L + upsilon, c_R - upsilon
+    theta_L, theta_R = gamma + delta, gamma - delta
+    sin_tL, cos_tL, sin_tR, cos_tR = (math.sin(theta_L), math.cos(theta_L),
+                                      math.sin(theta_R), math.cos(theta_R))
+    sin_g, cos_g, sin_d, cos_d = math.sin(gamma), math.cos(gamma), math.sin(delta), math.cos(delta)
+    D = 2.0 * sin_g * sin_d
+    D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
+    # d n_R / d gamma = -3 q_R c_R and d n_R / d beta_L = -1.5 q_R c_R (beta_R = pi - 2 gamma - beta_L)
+    nR_b = -1.5 * q_R * c_R
+
+    rows, values = [], []
+    if system.startswith("dr"):
+        qL_b = c_L / (2.0 * q_L) if q_L != 0.0 else math.inf  # unbounded at the corner
+        qR_b = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf
+        values.append(q_L * A - q_R * B)
+        rows.append((-(2.0 * qR_b * B + 2.0 * q_R * s_R), 0.0,
+                     qL_b * A - q_L * s_L - qR_b * B - q_R * s_R, q_L + q_R))
+        values.append(n_L * sin_tL - n_R * sin_tR + c * q_L * A * D)
+        rows.append((n_L * cos_tL - 2.0 * nR_b * sin_tR - n_R * cos_tR + c * q_L * A * D_g,
+                     n_L * cos_tL + n_R * cos_tR + c * q_L * A * D_d,
+                     1.5 * q_L * c_L * sin_tL - nR_b * sin_tR + c * D * (qL_b * A - q_L * s_L),
+                     c * q_L * D))
+    else:
+        qR_b = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf
+        values.append(c * q_R * B - k * n_L)
+        rows.append((c * (2.0 * qR_b * B + 2.0 * q_R * s_R), 0.0,
+                     c * (qR_b * B + q_R * s_R) - 1.5 * k * q_L * c_L, -c * q_R))
+        values.append(n_L * (sin_tL + k * D) - n_R * sin_tR)
+        rows.append((n_L * (cos_tL + k * D_g) - 2.0 * nR_b * sin_tR - n_R * cos_tR,
+                     n_L * (cos_tL + k * D_d) + n_R * cos_tR,
+                     1.5 * q_L * c_L * (sin_tL + k * D) - nR_b * sin_tR, 0.0))
+    if system.endswith("limit"):
+        values.append(c * A - k * s_L)
+        rows.append((0.0, 0.0, -c * s_L - k * c_L, c))
+    else:
+        values.append(upsilon)
+        rows.append((0.0, 0.0, 0.0, 1.0))
+    return values, rows
+
+
+@dataclass(frozen=True)
+class BoundarySystem:
+    """One regime boundary as ``H(x) = 0``, ``H: R^4 -> R^3``, ``x = (gamma, delta, beta_L, upsilon)``.
+
+    Attributes
+    ----------
+    name : str
+        One of ``BOUNDARY_NAMES``.
+    params : Parameters
+    regime : str
+        The regime whose equations it uses (``double_rolling`` or ``rolling_sliding``).
+    validity : dict of str to callable
+        ``name -> f(x)``, ``f >= 0`` where the boundary is physical (its regime valid).
+    """
+
+    name: str
+    params: Parameters
+    regime: str = field(init=False)
+    validity: dict = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.name not in BOUNDARY_NAMES:
+            raise ValueError(f"boundary = {self.name!r} is not one of {', '.join(BOUNDARY_NAMES)}")
+        k, c = self.params.k, self.params.c
+
+        def tn_left(x):
+            return k * math.sin(x[2]) - c * (math.cos(x[2]) + x[3])
+
+        def tn_right(x):
+            beta_R = _PI - 2.0 * x[0] - x[2]
+            return k * math.sin(beta_R) - c * (math.cos(beta_R) - x[3])
+
+        def slip_left(x):
+            return c * (math.cos(x[2]) + x[3]) - k * math.sin(x[2])
+
+        checks: dict[str, Callable] = {
+            "dr_limit": {"T_over_N_R <= k": tn_right},
+            "rs_limit": {"T_over_N_R <= k": tn_right},
+            "dr_no_roll": {"T_over_N_L <= k": tn_left, "T_over_N_R <= k": tn_right},
+            "rs_no_roll": {"d_L >= 0": slip_left, "T_over_N_R <= k": tn_right},
+        }[self.name]
+        object.__setattr__(self, "regime", REGIME_OF[self.name])
+        object.__setattr__(self, "validity", checks)
+
+    def residual(self, x) -> np.ndarray:
+        """``H(x)``, shape (3,)."""
+        values, _ = _rows(x, self.params.k, self.params.c, self.name)
+        return np.array(values)
+
+    def jacobian(self, x) -> np.ndarray:
+        """``dH/dx``, shape (3, 4), analytic."""
+        _, rows = _rows(x, self.params.k, self.params.c, self.name)
+        return np.array(rows)
+
+    def residual_and_jacobian(self, x):
+        """Both at once (one evaluation of the shared trigonometry)."""
+        values, rows = _rows(x, self.params.k, self.params.c, self.name)
+        return np.array(values), np.array(rows)
+
+    def is_physical(self, x, tol: float = 0.0) -> bool:
+        """Whether every validity function is ``>= -tol`` at ``x``."""
+        return all(f(x) >= -tol for f in self.validity.values())
+
+
+def boundary_system(name: str, k_or_params) -> BoundarySystem:
+    """The boundary system ``name`` for friction ``k`` (or a :class:`Parameters`)."""
+    params = k_or_params if isinstance(k_or_params, Parameters) else Parameters(k_or_params)
+    return BoundarySystem(name, params)
+
+
+def _symmetric_point(gamma: float) -> np.ndarray:
+    return np.array([gamma, 0.0, 0.5 * _PI - gamma, 0.0])
+
+
+def limit_seed(params: Parameters) -> np.ndarray:
+    """``(arctan(k/c), 0, pi/2 - arctan(k/c), 0)``: start of ``dr_limit`` and ``rs_limit``.
+
+    On ``delta = 0`` the symmetric state has ``T/N = c tan gamma`` (paper, below Eq. tran2),
+    which reaches ``k`` at ``gamma = arctan(k/c)`` (``arctan k`` for the paper's ``c = 1``).
+    It is also where the rolling-sliding ``upsilon = upsilon(beta_R)`` vanishes on
+    ``delta = 0``, the start of ``rs_no_roll`` when ``k < sqrt 2``.
+    """
+    return _symmetric_point(params.gamma_limit)
+
+
+def dr_no_roll_branch_point() -> np.ndarray:
+    """``(arctan sqrt 2, 0, arctan(1/sqrt 2), 0)``: where ``dr_no_roll`` leaves the symmetric family.
+
+    Notes
+    -----
+    On the symmetric family ``beta_L = beta_R = beta`` the torque equation with ``upsilon = 0``
+    is ``f(beta_L) = f(beta_R)``, ``f(beta) = sqrt(sin beta) cos beta``. Perturbing
+    antisymmetrically, ``beta_{L,R} = beta +- e``, its linear part is ``2 f'(beta) e``, so a second
+    branch can leave only where ``f'(beta) = cos^2 beta / (2 sqrt(sin beta)) - sin^(3/2) beta = 0``,
+    that is ``tan beta = 1/sqrt 2``, ``gamma = pi/2 - beta = arctan sqrt 2``, for any ``k`` and ``c``.
+    """
+    return _symmetric_point(math.atan(math.sqrt(2.0)))
+
+
+def corner_point() -> np.ndarray:
+    """``(pi/4, pi/4, 0, 0)``: the singular end of both ``upsilon = 0`` lines.
+
+    There ``theta_R = 0``, ``beta_L = 0`` (``N_L = 0``) and ``beta_R = pi/2``; every boundary
+    residual vanishes, but ``d q_L / d beta_L`` is unbounded.
+    """
+    return np.array([0.25 * _PI, 0.25 * _PI, 0.0, 0.0])

@@ -1,0 +1,169 @@
+"""The ``groove`` command line.
+
+Exit codes: 0 success, 1 a computation failed (e.g. a boundary could not be traced),
+2 bad input (argument out of range, unreadable file).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import math
+import sys
+
+from .parameters import check_domain, check_friction
+
+__all__ = ["main", "build_parser"]
+
+log = logging.getLogger("groove_model")
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+
+
+class UsageError(Exception):
+    """Bad input from the command line: message printed, exit code 2."""
+
+
+def _friction(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"friction coefficient k = {text!r} is not a number; k must be finite and > 0"
+        ) from None
+    try:
+        return check_friction(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _real(name: str):
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r} is not a number") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{name} = {text!r} must be finite")
+        return value
+
+    parse.__name__ = name
+    return parse
+
+
+_SOLVE_EXAMPLES = """examples:
+  groove solve --gamma 0.6 --delta 0.2 -k 1
+  groove solve --gamma 40 --delta 10 -k 10 --deg --json
+  groove solve --gamma 0.6 --delta 0.2 -k 1 --radius 0.01 --young 2e11 --poisson 0.3 --mass 0.033
+"""
+
+
+def _add_solve(sub) -> None:
+    p = sub.add_parser(
+        "solve", help="equilibrium of the ball at one point (gamma, delta)",
+        description="Print the equilibrium the paper predicts at one groove geometry: regime, "
+                    "loading direction beta_L, beta_R, rolling upsilon, force ratios, slip, "
+                    "rotation sense. Angles in radians unless --deg.",
+        epilog=_SOLVE_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--gamma", required=True, type=_real("gamma"),
+                   help="half-sum of the wall angles, 0 <= gamma <= pi/2")
+    p.add_argument("--delta", required=True, type=_real("delta"),
+                   help="half-difference of the wall angles, 0 <= delta <= gamma")
+    p.add_argument("-k", required=True, type=_friction, help="friction coefficient, > 0")
+    p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (angles in radians)")
+    dim = p.add_argument_group("dimensional results (all four needed)")
+    dim.add_argument("--radius", type=_real("radius R"), help="ball radius R in m")
+    dim.add_argument("--young", type=_real("Young's modulus E"), help="Young's modulus E in Pa")
+    dim.add_argument("--poisson", type=_real("Poisson ratio nu"), help="Poisson ratio nu")
+    dim.add_argument("--mass", type=_real("mass M"), help="ball mass M in kg")
+    dim.add_argument("--g", type=_real("g"), default=9.81, help="gravity in m/s^2 (default 9.81)")
+    p.set_defaults(run=_run_solve)
+
+
+_SOLVE_KEYS = ("regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
+               "T_over_N_L", "T_over_N_R", "d_L", "rotation")
+
+
+def _json_number(value):
+    return value if math.isfinite(value) else None
+
+
+def _run_solve(args) -> int:
+    from .dimensional import dimensional_state
+    from .equilibrium import solve_equilibrium
+
+    gamma, delta = (math.radians(args.gamma), math.radians(args.delta)) if args.deg else (
+        args.gamma, args.delta)
+    try:
+        check_domain(gamma, delta)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    eq = solve_equilibrium(gamma, delta, args.k)
+    dims = [args.radius, args.young, args.poisson, args.mass]
+    dimensional = None
+    if any(v is not None for v in dims):
+        if any(v is None for v in dims):
+            raise UsageError("dimensional results need all of --radius, --young, --poisson, --mass")
+        try:
+            dimensional = dimensional_state(eq, args.radius, args.young, args.poisson, args.mass,
+                                            args.g)
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
+    record = {key: getattr(eq, key) for key in _SOLVE_KEYS}
+    if args.json:
+        out = {key: (_json_number(v) if isinstance(v, float) else v) for key, v in record.items()}
+        if dimensional is not None:
+            out["dimensional"] = {key: _json_number(v) for key, v in dimensional.to_dict().items()}
+        print(json.dumps(out))
+        return EXIT_OK
+    print(f"k = {args.k:g}, gamma = {eq.gamma:.10g} rad ({math.degrees(eq.gamma):.6g} deg), "
+          f"delta = {eq.delta:.10g} rad ({math.degrees(eq.delta):.6g} deg)")
+    print(f"  regime     {eq.regime.replace('_', ' ')}, rotation {eq.rotation}")
+    print(f"  theta_L    {eq.theta_L:.10g}   theta_R {eq.theta_R:.10g}")
+    print(f"  beta_L     {eq.beta_L:.10g}   beta_R  {eq.beta_R:.10g}")
+    print(f"  upsilon    {eq.upsilon:.10g}")
+    print(f"  T/N_L      {eq.T_over_N_L:.10g}   T/N_R   {eq.T_over_N_R:.10g}   (k = {args.k:g})")
+    print(f"  d_L/Z      {eq.d_L:.10g}   d_R/Z   {eq.d_R:.10g}")
+    if dimensional is not None:
+        d = dimensional
+        print(f"  Z          {d.Z:.6g} m")
+        print(f"  N_L, N_R   {d.N_L:.6g} N, {d.N_R:.6g} N;  T {d.T:.6g} N")
+        print(f"  a_L, a_R   {d.a_L:.6g} m, {d.a_R:.6g} m (contact radii)")
+    return EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``groove`` argument parser with every subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="groove",
+        description="Regime boundaries of an elastic ball in a rigid V-groove "
+                    "(Halsey & Ertas, 'A Ball in a Groove').",
+        epilog="examples:\n  groove solve --gamma 0.6 --delta 0.2 -k 1\n"
+               "run 'groove COMMAND --help' for each command's options and examples",
+        formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    _add_solve(sub)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``groove`` console script; returns the exit code."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.run(args)
+    except UsageError as exc:
+        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
+    except OSError as exc:
+        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
+    return EXIT_FAILED  # pragma: no cover
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,103 @@
+"""Dimensional forces and displacements of an equilibrium (paper Eq. hertz).
+
+Hertz: a sphere of radius ``R`` pressed by ``N`` approaches the wall by
+``u = (G N / sqrt(R))^(2/3)`` with a contact circle of radius ``a = (G N R)^(1/3)``,
+``G = 3 (1 - nu^2) / (4 E)``. So ``N = C u^(3/2)`` with ``C = sqrt(R) / G``, and with
+``u = Z sin(beta)`` every force is ``C Z^(3/2)`` times its scaled value ``n`` or ``t``.
+The vertical balance (paper Eq. 1) fixes the scale:
+``C Z^(3/2) (n_L cos theta_L + t sin theta_L + n_R cos theta_R + t sin theta_R) = M g``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .equilibrium import Equilibrium
+
+__all__ = ["DimensionalState", "dimensional_state"]
+
+
+@dataclass(frozen=True)
+class DimensionalState:
+    """Forces in newtons and lengths in metres at an equilibrium (shape of the equilibrium).
+
+    Attributes
+    ----------
+    Z : approach of the ball's centre along its loading path (m)
+    N_L, N_R, T : normal forces and the common tangential force (N)
+    a_L, a_R : Hertz contact radii (m)
+    d_L, d_R : slip of each contact down its wall (m)
+    """
+
+    Z: object
+    N_L: object
+    N_R: object
+    T: object
+    a_L: object
+    a_R: object
+    d_L: object
+    d_R: object
+
+    def to_dict(self) -> dict:
+        return {k: (v.tolist() if isinstance(v, np.ndarray) else v) for k, v in vars(self).items()}
+
+
+def _positive(name: str, value, unit: str) -> float:
+    try:
+        value = float(value)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a real number, got {value!r}") from exc
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError(f"{name} = {value!r} {unit} is outside the allowed range: finite and > 0")
+    return value
+
+
+def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> DimensionalState:
+    """Forces and displacements in SI units.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        From :func:`groove_model.solve_equilibrium` (scalar or array).
+    radius : float
+        Ball radius ``R`` in m, > 0.
+    young : float
+        Young's modulus ``E`` in Pa, > 0.
+    poisson : float
+        Poisson ratio ``nu``, ``-1 < nu < 0.5``.
+    mass : float
+        Ball mass ``M`` in kg, > 0.
+    g : float
+        Gravitational acceleration in m/s^2, > 0 (default 9.81).
+
+    Returns
+    -------
+    DimensionalState
+    """
+    R = _positive("radius R", radius, "m")
+    E = _positive("Young's modulus E", young, "Pa")
+    M = _positive("mass M", mass, "kg")
+    g = _positive("gravitational acceleration g", g, "m/s^2")
+    try:
+        nu = float(poisson)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"Poisson ratio nu must be a real number, got {poisson!r}") from exc
+    if not -1.0 < nu < 0.5:
+        raise ValueError(f"Poisson ratio nu = {nu!r} is outside the allowed range -1 < nu < 0.5")
+    G = 3.0 * (1.0 - nu * nu) / (4.0 * E)
+    C = math.sqrt(R) / G
+    n_L, n_R, t = (np.asarray(v, float) for v in (eq.n_L, eq.n_R, eq.t))
+    vertical = (n_L * np.cos(eq.theta_L) + t * np.sin(eq.theta_L)
+                + n_R * np.cos(eq.theta_R) + t * np.sin(eq.theta_R))
+    Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
+    scale = C * Z**1.5
+    N_L, N_R = scale * n_L, scale * n_R
+    values = dict(Z=Z, N_L=N_L, N_R=N_R, T=scale * t, a_L=np.cbrt(G * N_L * R),
+                  a_R=np.cbrt(G * N_R * R), d_L=Z * np.asarray(eq.d_L, float),
+                  d_R=Z * np.asarray(eq.d_R, float))
+    if np.ndim(Z) == 0:
+        values = {key: float(v) for key, v in values.items()}
+    return DimensionalState(**values)

@@ -1,0 +1,165 @@
+"""Parameters of the ball-in-a-groove model and the geometry of the groove.
+
+Conventions follow Halsey & Ertas, "A Ball in a Groove" (``shared/paper``): walls at
+angles ``theta_L >= theta_R`` to the horizontal, ``gamma = (theta_L + theta_R)/2``,
+``delta = (theta_L - theta_R)/2``, domain ``0 <= delta <= gamma <= pi/2``, radians.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = [
+    "Compliance",
+    "Parameters",
+    "check_domain",
+    "check_friction",
+    "gamma_delta_from_thetas",
+    "thetas_from_gamma_delta",
+]
+
+HALF_PI = 0.5 * math.pi
+
+
+def _check_real(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {value!r} of type {type(value).__name__}")
+    return float(value)
+
+
+def check_friction(k: object) -> float:
+    """Return the friction coefficient as a float, or raise if it is not finite and > 0.
+
+    Raises
+    ------
+    TypeError
+        If ``k`` is not a real number.
+    ValueError
+        If ``k`` is not finite or not positive; the message names the value and the range.
+    """
+    value = _check_real("friction coefficient k", k)
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError(
+            f"friction coefficient k = {value!r} is outside the allowed range: "
+            "k must be finite and > 0"
+        )
+    return value
+
+
+@dataclass(frozen=True)
+class Compliance:
+    """Tangential compliance of a proportionally loaded Hertz-Mindlin contact.
+
+    The paper (Eq. prop) uses ``u_t/u_n = T/N``. This object keeps that law replaceable:
+    ``T/N = ratio * u_t/u_n``, with ``ratio = 1`` the paper's small-Poisson-ratio limit.
+
+    Parameters
+    ----------
+    ratio : float
+        ``(T/N) / (u_t/u_n)`` under proportional loading, finite and > 0. The paper derives
+        ``ratio = 1`` from Mindlin & Deresiewicz in the small-Poisson-ratio limit; other values
+        are for sensitivity studies (the paper notes the qualitative picture should not
+        depend on the exact compliance).
+    """
+
+    ratio: float = 1.0
+
+    def __post_init__(self) -> None:
+        value = _check_real("compliance ratio", self.ratio)
+        if not math.isfinite(value) or value <= 0.0:
+            raise ValueError(
+                f"compliance ratio = {value!r} is outside the allowed range: finite and > 0"
+            )
+        object.__setattr__(self, "ratio", value)
+
+
+@dataclass(frozen=True)
+class Parameters:
+    """Validated, immutable model parameters.
+
+    Parameters
+    ----------
+    k : float
+        Friction coefficient of both walls (Amontons: ``|T| <= k N``); finite and > 0.
+    compliance : Compliance
+        Tangential compliance law; the default is the paper's ``u_t/u_n = T/N``.
+    """
+
+    k: float
+    compliance: Compliance = field(default_factory=Compliance)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "k", check_friction(self.k))
+        if not isinstance(self.compliance, Compliance):
+            raise TypeError(
+                f"compliance must be a Compliance, got {type(self.compliance).__name__}"
+            )
+
+    @property
+    def c(self) -> float:
+        """The compliance ratio ``T/N`` per ``u_t/u_n``."""
+        return self.compliance.ratio
+
+    @property
+    def gamma_limit(self) -> float:
+        """``arctan(k/c)``: on ``delta = 0`` double rolling holds below it (paper: ``arctan k``)."""
+        return math.atan2(self.k, self.c)
+
+
+def thetas_from_gamma_delta(gamma, delta):
+    """Wall angles ``theta_L = gamma + delta``, ``theta_R = gamma - delta`` (radians)."""
+    gamma = np.asarray(gamma, dtype=float)
+    delta = np.asarray(delta, dtype=float)
+    return gamma + delta, gamma - delta
+
+
+def gamma_delta_from_thetas(theta_L, theta_R):
+    """Half-sum and half-difference ``gamma = (theta_L + theta_R)/2``, ``delta = (theta_L - theta_R)/2``."""
+    theta_L = np.asarray(theta_L, dtype=float)
+    theta_R = np.asarray(theta_R, dtype=float)
+    return 0.5 * (theta_L + theta_R), 0.5 * (theta_L - theta_R)
+
+
+def check_domain(gamma, delta):
+    """Return ``gamma, delta`` as float arrays, or raise if any point is outside the domain.
+
+    The domain is ``0 <= delta <= gamma <= pi/2`` (paper, below Eq. 3); a relative slack of
+    ``4 eps`` absorbs round-off in angles computed as ``pi/2`` or ``arctan`` of something.
+
+    Raises
+    ------
+    TypeError
+        If an angle is not numeric.
+    ValueError
+        Naming the first offending quantity, its value and the allowed range.
+    """
+    try:
+        gamma_a = np.asarray(gamma, dtype=float)
+        delta_a = np.asarray(delta, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"gamma and delta must be real numbers, got {gamma!r} and {delta!r}") from exc
+    gamma_a, delta_a = np.broadcast_arrays(gamma_a, delta_a)
+    slack = 4.0 * np.finfo(float).eps
+    checks = (
+        (~np.isfinite(gamma_a), "gamma", gamma_a, "finite, 0 <= gamma <= pi/2"),
+        (~np.isfinite(delta_a), "delta", delta_a, "finite, 0 <= delta <= gamma"),
+        (gamma_a > HALF_PI * (1.0 + slack), "gamma", gamma_a, "0 <= gamma <= pi/2 = 1.5707963..."),
+        (gamma_a < 0.0, "gamma", gamma_a, "0 <= gamma <= pi/2"),
+        (delta_a < 0.0, "delta", delta_a, "0 <= delta <= gamma"),
+    )
+    for bad, name, values, allowed in checks:
+        if np.any(bad):
+            value = float(values[bad].flat[0])
+            raise ValueError(f"{name} = {value!r} rad is outside the allowed range {allowed}")
+    bad = delta_a > gamma_a * (1.0 + slack) + 1e-300
+    if np.any(bad):
+        i = np.flatnonzero(bad.ravel())[0]
+        raise ValueError(
+            f"delta = {float(delta_a.flat[i])!r} rad is outside the allowed range "
+            f"0 <= delta <= gamma (gamma = {float(gamma_a.flat[i])!r} rad)"
+        )
+    return np.minimum(gamma_a, HALF_PI), np.minimum(delta_a, np.minimum(gamma_a, HALF_PI))

@@ -1,0 +1,106 @@
+"""Boundary systems: analytic Jacobians against central differences, seeds, validity."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from groove_model.boundaries import (
+    BOUNDARY_NAMES,
+    boundary_system,
+    corner_point,
+    dr_no_roll_branch_point,
+    limit_seed,
+)
+from groove_model.equilibrium import solve_equilibrium
+from groove_model.parameters import Compliance, Parameters
+
+
+def central_differences(f, x, h=1e-6):
+    return np.column_stack([(f(x + h * e) - f(x - h * e)) / (2 * h) for e in np.eye(len(x))])
+
+
+@st.composite
+def interior_points(draw):
+    gamma = draw(st.floats(0.05, 0.5 * math.pi - 0.05))
+    delta = draw(st.floats(0.0, 1.0)) * gamma
+    omega = math.pi - 2 * gamma
+    beta_L = draw(st.floats(0.05, 0.95)) * omega
+    upsilon = draw(st.floats(-2.0, 2.0))
+    return np.array([gamma, delta, beta_L, upsilon])
+
+
+@pytest.mark.parametrize("name", BOUNDARY_NAMES)
+@settings(max_examples=60, deadline=None)
+@given(x=interior_points(), k=st.floats(0.01, 1000.0), c=st.sampled_from([1.0, 0.6]))
+def test_jacobian_matches_central_differences(name, x, k, c):
+    system = boundary_system(name, Parameters(k, Compliance(c)))
+    J = system.jacobian(x)
+    assert J.shape == (3, 4)
+    J_fd = central_differences(system.residual, x)
+    scale = 1.0 + np.abs(J).max()
+    assert np.max(np.abs(J - J_fd)) <= 1e-6 * scale
+    H, J2 = system.residual_and_jacobian(x)
+    assert np.array_equal(H, system.residual(x)) and np.array_equal(J, J2)
+
+
+@pytest.mark.parametrize("k", [0.1, 1.0, math.sqrt(2), 10.0])
+def test_seeds_are_exact_solutions(k):
+    params = Parameters(k)
+    seed = limit_seed(params)
+    assert seed[0] == pytest.approx(math.atan(k), abs=1e-15)
+    for name in ("dr_limit", "rs_limit", "rs_no_roll"):
+        # The limit equation c A - k s_L carries terms of size k.
+        assert np.max(np.abs(boundary_system(name, params).residual(seed))) <= 4e-16 * (1 + k)
+    bp = dr_no_roll_branch_point()
+    assert bp[0] == pytest.approx(math.atan(math.sqrt(2)), abs=1e-15)
+    system = boundary_system("dr_no_roll", params)
+    assert np.max(np.abs(system.residual(bp))) <= 1e-15
+    # A branch point: the 3 x 4 Jacobian loses rank there.
+    assert np.linalg.svd(system.jacobian(bp), compute_uv=False)[-1] <= 1e-14
+    for name in ("dr_no_roll", "rs_no_roll"):
+        assert np.max(np.abs(boundary_system(name, params).residual(corner_point()))) <= 1e-15
+
+
+def test_symmetric_family_solves_dr_no_roll_for_every_gamma():
+    system = boundary_system("dr_no_roll", 10.0)
+    for gamma in np.linspace(0.05, 1.5, 30):
+        x = np.array([gamma, 0.0, 0.5 * math.pi - gamma, 0.0])
+        assert np.max(np.abs(system.residual(x))) <= 1e-15
+
+
+@pytest.mark.parametrize("k", [0.5, 3.0])
+def test_solver_states_satisfy_their_regime_equations(k):
+    """A double-rolling state satisfies the DR pair; a rolling-sliding one the RS pair."""
+    gamma, delta = np.meshgrid(np.linspace(0.1, 1.4, 15), np.linspace(0.05, 0.95, 9))
+    delta = delta * gamma
+    eq = solve_equilibrium(gamma, delta, k)
+    dr, rs = boundary_system("dr_no_roll", k), boundary_system("rs_no_roll", k)
+    for i in np.ndindex(gamma.shape):
+        x = np.array([eq.gamma[i], eq.delta[i], eq.beta_L[i], eq.upsilon[i]])
+        system = dr if eq.regime[i] == "double_rolling" else rs
+        assert np.max(np.abs(system.residual(x)[:2])) <= 1e-12
+        assert system.is_physical(x, tol=1e-12)
+
+
+def test_validity_signs():
+    k = 1.0
+    dr = boundary_system("dr_no_roll", k)
+    eq = solve_equilibrium(0.6, 0.2, k)  # rolling sliding: d_L > 0
+    x = np.array([eq.gamma, eq.delta, eq.beta_L, eq.upsilon])
+    assert boundary_system("rs_no_roll", k).validity["d_L >= 0"](x) > 0
+    eq = solve_equilibrium(0.4, 0.1, k)  # double rolling: T/N_L < k
+    x = np.array([eq.gamma, eq.delta, eq.beta_L, eq.upsilon])
+    assert dr.validity["T_over_N_L <= k"](x) > 0 and dr.is_physical(x)
+
+
+def test_unknown_boundary_name():
+    with pytest.raises(ValueError, match="boundary = 'foo' is not one of dr_limit, rs_limit"):
+        boundary_system("foo", 1.0)
+
+
+def test_residual_outside_contact_range_is_nan_not_an_exception():
+    system = boundary_system("dr_limit", 1.0)
+    assert np.all(np.isnan(system.residual(np.array([0.5, 0.1, -0.1, 0.0]))[:2]))

@@ -1,0 +1,151 @@
+"""The point solver: balance equations, the delta = 0 line, regime exclusivity, edges."""
+
+import math
+
+import numpy as np
+import pytest
+
+from groove_model.dimensional import dimensional_state
+from groove_model.equilibrium import (
+    _double_rolling_residual,
+    regime_validity,
+    solve_equilibrium,
+)
+from groove_model.parameters import Compliance, Parameters
+
+KS = [0.01, 0.3, 1.0, math.sqrt(2.0), 2.0, 10.0, 1000.0]
+
+
+def domain_grid(n_gamma=80, n_ratio=41, edges=True):
+    gamma = np.linspace(0.0, 0.5 * math.pi, n_gamma)
+    ratio = np.linspace(0.0, 1.0, n_ratio)
+    if not edges:
+        gamma, ratio = gamma[1:-1], ratio[1:-1]
+    G, R = np.meshgrid(gamma, ratio)
+    return G, R * G
+
+
+def balance_residuals(eq, k, c=1.0):
+    """Paper Eqs. 2 and 3 (unreduced) and the contact laws, from the solver's own state."""
+    tL, tR = eq.theta_L, eq.theta_R
+    # T_L from the left contact: proportional loading if it sticks/rolls, Amontons if it slides.
+    sliding_L = np.asarray(eq.d_L) > 0.0
+    sliding_R = np.asarray(eq.d_R) > 0.0
+    sL, sR = np.sin(eq.beta_L), np.sin(eq.beta_R)
+    T_L = np.where(sliding_L, k * eq.n_L, c * np.sqrt(sL) * (np.cos(eq.beta_L) + eq.upsilon))
+    T_R = np.where(sliding_R, k * eq.n_R, c * np.sqrt(sR) * (np.cos(eq.beta_R) - eq.upsilon))
+    horizontal = -T_L * np.cos(tL) + eq.n_L * np.sin(tL) + T_R * np.cos(tR) - eq.n_R * np.sin(tR)
+    torque = T_L - T_R
+    # Sliding contact: u_t/u_n = T/N = k with u_t = Z (cos beta_L + upsilon) - d_L.
+    slide_law = np.where(sliding_L, c * (np.cos(eq.beta_L) + eq.upsilon - eq.d_L) - k * sL, 0.0)
+    return horizontal, torque, slide_law
+
+
+@pytest.mark.parametrize("k", KS)
+def test_balance_equations_hold_at_every_solver_state(k):
+    G, D = domain_grid()
+    eq = solve_equilibrium(G, D, k)
+    for residual in balance_residuals(eq, k):
+        assert np.max(np.abs(residual)) <= 1e-12
+    assert np.all(np.asarray(eq.d_L) >= 0.0) and np.all(np.asarray(eq.d_R) >= 0.0)
+    assert np.allclose(eq.beta_L + eq.beta_R, math.pi - 2.0 * G, atol=1e-14)
+
+
+def test_balance_with_another_compliance_ratio():
+    params = Parameters(2.0, Compliance(0.6))
+    G, D = domain_grid(edges=False)
+    eq = solve_equilibrium(G, D, params)
+    for residual in balance_residuals(eq, 2.0, 0.6):
+        assert np.max(np.abs(residual)) <= 1e-12
+    assert np.all(np.asarray(eq.T_over_N_L) <= 2.0 + 1e-12)
+
+
+@pytest.mark.parametrize("k", KS)
+def test_symmetric_line(k):
+    gamma = np.linspace(0.0, 0.5 * math.pi, 201)
+    eq = solve_equilibrium(gamma, 0.0 * gamma, k)
+    below = gamma < math.atan(k)
+    assert np.allclose(eq.beta_L, 0.5 * math.pi - gamma, atol=1e-15)
+    assert np.allclose(eq.beta_R, 0.5 * math.pi - gamma, atol=1e-15)
+    assert np.all(eq.upsilon == 0.0)
+    assert np.allclose(eq.T_over_N_L[below], np.tan(gamma[below]), rtol=1e-13, atol=1e-15)
+    assert np.all(eq.regime[below] == "double_rolling")
+    assert np.all(eq.regime[~below] == "double_sliding")
+    assert np.all(eq.rotation == "none")
+    slip = np.sin(gamma[~below]) - k * np.cos(gamma[~below])
+    assert np.allclose(eq.d_L[~below], slip) and np.allclose(eq.d_R[~below], slip)
+
+
+@pytest.mark.parametrize("k", KS + [0.1, 100.0])
+def test_exactly_one_regime_holds_inside_the_domain(k):
+    G, D = domain_grid(121, 61, edges=False)
+    dr_valid, rs_valid = regime_validity(G, D, k)
+    assert np.all(dr_valid ^ rs_valid)
+    eq = solve_equilibrium(G, D, k)
+    assert np.array_equal(eq.regime == "double_rolling", dr_valid)
+
+
+def test_domain_edges_are_solved_without_failure():
+    k = 1.0
+    gamma = np.array([0.0, 1e-12, 1e-6, 0.3, 0.5 * math.pi - 1e-9, 0.5 * math.pi])
+    for delta in (0.0 * gamma, gamma, 0.5 * gamma, gamma * (1 - 1e-9)):
+        eq = solve_equilibrium(gamma, delta, k)
+        assert np.all(np.isfinite(eq.beta_L)) and np.all(np.isfinite(eq.upsilon))
+        assert np.all(np.isin(eq.regime, ["double_rolling", "rolling_sliding", "double_sliding"]))
+    # On delta = gamma (theta_R = 0) the left wall carries no load: beta_L = 0, rolling sliding.
+    edge = solve_equilibrium(0.4, 0.4, k)
+    assert edge.beta_L == 0.0 and edge.regime == "rolling_sliding"
+
+
+def test_double_rolling_root_is_unique():
+    """Exactly one sign change of the reduced equation on a fine grid in sqrt(a)."""
+    w = np.linspace(0.0, 1.0, 4001)[1:-1]
+    a = w**2
+    for gamma in np.linspace(0.02, 0.5 * math.pi - 0.02, 40):
+        for delta in np.linspace(0.02, 0.98, 25) * gamma:
+            args = (math.pi - 2 * gamma, math.sin(gamma + delta), math.sin(gamma - delta),
+                    2 * math.sin(gamma) * math.sin(delta), 1.0)
+            values = _double_rolling_residual(a, *args)
+            signs = np.sign(values[values != 0.0])
+            assert np.count_nonzero(np.diff(signs)) == 1, (gamma, delta)
+
+
+def test_scalar_input_gives_scalars():
+    eq = solve_equilibrium(0.6, 0.2, 1.0)
+    assert isinstance(eq.beta_L, float) and isinstance(eq.regime, str)
+    assert eq.to_dict()["regime"] == eq.regime
+
+
+def test_dimensional_results_satisfy_vertical_balance_and_hertz():
+    R, E, nu, M, g = 0.01, 2.0e11, 0.3, 0.033, 9.81
+    G, D = domain_grid(30, 11, edges=False)
+    for k in (0.5, 10.0):
+        eq = solve_equilibrium(G, D, k)
+        dim = dimensional_state(eq, R, E, nu, M, g)
+        T = dim.T
+        vertical = (T * np.sin(eq.theta_L) + dim.N_L * np.cos(eq.theta_L)
+                    + T * np.sin(eq.theta_R) + dim.N_R * np.cos(eq.theta_R))
+        assert np.allclose(vertical, M * g, rtol=1e-12)
+        horizontal = (-T * np.cos(eq.theta_L) + dim.N_L * np.sin(eq.theta_L)
+                      + T * np.cos(eq.theta_R) - dim.N_R * np.sin(eq.theta_R))
+        assert np.max(np.abs(horizontal)) <= 1e-12 * M * g
+        Gc = 3 * (1 - nu**2) / (4 * E)
+        u_R = (Gc * dim.N_R / math.sqrt(R)) ** (2 / 3)  # Hertz approach, paper Eq. hertz
+        assert np.allclose(u_R, dim.Z * np.sin(eq.beta_R), rtol=1e-12)
+        assert np.allclose(dim.a_R, np.cbrt(Gc * dim.N_R * R), rtol=1e-14)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        (dict(radius=-1.0), "radius R = -1.0 m is outside the allowed range: finite and > 0"),
+        (dict(young=0.0), "Young's modulus E = 0.0 Pa is outside the allowed range"),
+        (dict(poisson=0.5), "Poisson ratio nu = 0.5 is outside the allowed range -1 < nu < 0.5"),
+        (dict(mass=float("inf")), "mass M = inf kg is outside the allowed range"),
+    ],
+)
+def test_dimensional_input_errors(kwargs, message):
+    eq = solve_equilibrium(0.6, 0.2, 1.0)
+    args = dict(radius=0.01, young=2e11, poisson=0.3, mass=0.03) | kwargs
+    with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        dimensional_state(eq, **args)

@@ -1,0 +1,72 @@
+"""Parameter validation and geometry: every message names the quantity, value and range."""
+
+import math
+
+import numpy as np
+import pytest
+
+from groove_model.equilibrium import solve_equilibrium
+from groove_model.parameters import (
+    Compliance,
+    Parameters,
+    check_domain,
+    gamma_delta_from_thetas,
+    thetas_from_gamma_delta,
+)
+
+
+@pytest.mark.parametrize(
+    "k, error, message",
+    [
+        (0.0, ValueError, "friction coefficient k = 0.0 is outside the allowed range: k must be finite and > 0"),
+        (-1.0, ValueError, "friction coefficient k = -1.0 is outside the allowed range"),
+        (float("nan"), ValueError, "friction coefficient k = nan is outside the allowed range"),
+        (float("inf"), ValueError, "friction coefficient k = inf is outside the allowed range"),
+        ("1", TypeError, "friction coefficient k must be a real number, got '1' of type str"),
+        (None, TypeError, "friction coefficient k must be a real number, got None"),
+    ],
+)
+def test_bad_friction(k, error, message):
+    with pytest.raises(error) as info:
+        Parameters(k)
+    assert str(info.value).startswith(message)
+
+
+@pytest.mark.parametrize(
+    "gamma, delta, message",
+    [
+        (0.5, 0.6, "delta = 0.6 rad is outside the allowed range 0 <= delta <= gamma (gamma = 0.5 rad)"),
+        (2.0, 0.1, "gamma = 2.0 rad is outside the allowed range 0 <= gamma <= pi/2"),
+        (-0.1, 0.0, "gamma = -0.1 rad is outside the allowed range 0 <= gamma <= pi/2"),
+        (0.5, -0.1, "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma"),
+        (float("nan"), 0.1, "gamma = nan rad is outside the allowed range finite"),
+        ([0.1, 0.5], [0.0, 0.7], "delta = 0.7 rad is outside the allowed range"),
+    ],
+)
+def test_bad_angles(gamma, delta, message):
+    with pytest.raises(ValueError) as info:
+        check_domain(gamma, delta)
+    assert str(info.value).startswith(message)
+    with pytest.raises(ValueError):
+        solve_equilibrium(gamma, delta, 1.0)
+
+
+def test_domain_accepts_its_closed_edges():
+    gamma, delta = check_domain([0.0, math.pi / 2, math.pi / 2], [0.0, 0.0, math.pi / 2])
+    assert np.all(delta <= gamma)
+
+
+def test_angle_conversions_round_trip():
+    tL, tR = thetas_from_gamma_delta(0.7, 0.2)
+    assert (tL, tR) == pytest.approx((0.9, 0.5))
+    assert gamma_delta_from_thetas(tL, tR) == pytest.approx((0.7, 0.2))
+
+
+def test_parameters_are_immutable_and_compliance_validated():
+    p = Parameters(2)
+    assert p.k == 2.0 and isinstance(p.k, float) and p.c == 1.0
+    assert p.gamma_limit == pytest.approx(math.atan(2.0))
+    with pytest.raises(AttributeError):
+        p.k = 3.0
+    with pytest.raises(ValueError, match=r"compliance ratio = -1.0 is outside the allowed range"):
+        Compliance(-1.0)
