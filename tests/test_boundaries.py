@@ -32,11 +32,13 @@ def interior_points(draw):
     return np.array([gamma, delta, beta_L, upsilon])
 
 
+@pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
 @pytest.mark.parametrize("name", BOUNDARY_NAMES)
 @settings(max_examples=60, deadline=None)
 @given(x=interior_points(), k=st.floats(0.01, 1000.0), c=st.sampled_from([1.0, 0.6]))
-def test_jacobian_matches_central_differences(name, x, k, c):
-    system = boundary_system(name, Parameters(k, Compliance(c)))
+def test_jacobian_matches_central_differences(name, chart, x, k, c):
+    system = boundary_system(name, Parameters(k, Compliance(c)), chart)
+    x = system.from_x(x)
     J = system.jacobian(x)
     assert J.shape == (3, 4)
     J_fd = central_differences(system.residual, x)
@@ -104,3 +106,25 @@ def test_unknown_boundary_name():
 def test_residual_outside_contact_range_is_nan_not_an_exception():
     system = boundary_system("dr_limit", 1.0)
     assert np.all(np.isnan(system.residual(np.array([0.5, 0.1, -0.1, 0.0]))[:2]))
+
+
+@pytest.mark.parametrize("name", ["dr_no_roll", "rs_no_roll"])
+def test_sqrt_chart_makes_the_corner_regular(name):
+    """In w = sqrt(beta_L) the corner (pi/4, pi/4) is a regular point (full-rank Jacobian)."""
+    system = boundary_system(name, 10.0, "sqrt_beta_L")
+    y = system.from_x(corner_point())
+    assert np.max(np.abs(system.residual(y))) <= 1e-15
+    assert np.linalg.svd(system.jacobian(y), compute_uv=False)[-1] >= 0.3
+    # ... and the Jacobian is smooth through w = 0, including on the mirror side w < 0.
+    for w in (-1e-3, 1e-3):
+        y_w = y + np.array([0.0, 0.0, w, 0.0])
+        fd = central_differences(system.residual, y_w, h=1e-7)
+        assert np.allclose(system.jacobian(y_w), fd, atol=1e-6)
+
+
+def test_chart_round_trip_and_validation():
+    system = boundary_system("dr_limit", 1.0, "sqrt_beta_L")
+    x = np.array([0.5, 0.2, 0.3, -0.1])
+    assert np.allclose(system.to_x(system.from_x(x)), x, rtol=1e-15)
+    with pytest.raises(ValueError, match="chart = 'w' is not one of beta_L, sqrt_beta_L"):
+        boundary_system("dr_limit", 1.0, "w")
