@@ -135,6 +135,111 @@ def _run_solve(args) -> int:
     return EXIT_OK
 
 
+_TRACE_EXAMPLES = """examples:
+  groove trace -k 1 -k 10 --out results/          # the paper's Figure 2: CSVs and overlay
+  groove trace -k 0.5 --out out/ --keep-unphysical  # keep unphysical continuations, flagged
+  groove trace -k 2 -k 20 --out out/ --deg --figure my_overlay
+
+writes, for each k, boundaries_k{k}.csv (one row per point) and special_points_k{k}.csv,
+and the overlay FIGURE.png and FIGURE.svg; nothing is written if any boundary fails.
+"""
+
+_PLOT_EXAMPLES = """examples:
+  groove plot results/boundaries_k1.csv results/boundaries_k10.csv -o overlay.png
+  groove plot out/boundaries_k2.csv -o k2.svg --deg
+"""
+
+
+def _add_trace(sub) -> None:
+    p = sub.add_parser(
+        "trace", help="trace every regime boundary for one or more k; write CSVs and an overlay",
+        description="Follow each boundary of the paper (T = kN on the steeper wall, upsilon = 0 "
+                    "in double rolling and in rolling sliding) from the seed points the paper "
+                    "names, by pseudo-arclength continuation, and write them as CSV and as an "
+                    "overlay figure in the style of the paper's Figure 2.",
+        epilog=_TRACE_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("-k", required=True, action="append", type=_friction, dest="ks",
+                   help="friction coefficient (> 0); repeat for several")
+    p.add_argument("--out", required=True, help="output directory (created if needed)")
+    p.add_argument("--figure", default=None,
+                   help="overlay file name without suffix (default boundaries_k{k1}_k{k2}...)")
+    p.add_argument("--keep-unphysical", action="store_true",
+                   help="keep the parts of each boundary where its regime is not valid")
+    p.add_argument("--deg", action="store_true", help="overlay axes in degrees")
+    p.add_argument("--no-figure", action="store_true", help="write the CSVs only")
+    p.set_defaults(run=_run_trace)
+
+
+def _add_plot(sub) -> None:
+    p = sub.add_parser(
+        "plot", help="draw an overlay from existing boundaries CSV files",
+        description="Draw the boundaries stored in boundaries_k*.csv files onto one overlay.",
+        epilog=_PLOT_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("files", nargs="+", metavar="FILE.csv", help="boundaries CSV files")
+    p.add_argument("-o", "--output", required=True, metavar="FIG.png",
+                   help="figure file; its suffix (.png, .svg, .pdf) sets the format")
+    p.add_argument("--deg", action="store_true", help="axes in degrees")
+    p.set_defaults(run=_run_plot)
+
+
+def _run_trace(args) -> int:
+    from pathlib import Path
+
+    from .export import write_boundary_set
+    from .plotting import save_overlay
+    from .tracer import trace_boundaries
+
+    sets = []
+    for k in dict.fromkeys(args.ks):
+        log.info("tracing k = %g", k)
+        result = trace_boundaries(k, keep_unphysical=args.keep_unphysical)
+        sets.append(result)
+        if not result.ok:
+            for failure in result.failures:
+                print(f"groove trace: error: k = {k:g}: {failure}", file=sys.stderr)
+    if not all(b.ok for b in sets):
+        print("groove trace: nothing written: a boundary failed (see above)", file=sys.stderr)
+        return EXIT_FAILED
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} exists and is not a directory")
+    for result in sets:
+        paths = write_boundary_set(result, out)
+        print(f"k = {result.k:g}: {', '.join(str(p) for p in paths)}; "
+              f"{sum(len(c.x) for c in result.curves.values())} points, "
+              f"|rs_limit - dr_limit| <= {result.limit_distance:.1e}")
+        for note in result.notes:
+            print(f"  note: {note}")
+    if not args.no_figure:
+        name = args.figure or "boundaries_" + "_".join(f"k{b.k:g}" for b in sets)
+        for path in save_overlay(sets, out / name, degrees=args.deg):
+            print(f"figure: {path}")
+    return EXIT_OK
+
+
+def _run_plot(args) -> int:
+    from pathlib import Path
+
+    from .export import read_boundaries_csv
+    from .plotting import save_overlay
+
+    frames = []
+    for name in args.files:
+        try:
+            frames.append(read_boundaries_csv(name))
+        except (OSError, ValueError) as exc:
+            raise UsageError(f"cannot read {name}: {exc}") from None
+    target = Path(args.output)
+    fmt = target.suffix.lstrip(".").lower()
+    if fmt not in ("png", "svg", "pdf"):
+        raise UsageError(f"output format {target.suffix!r} of {target} is not one of .png, .svg, .pdf")
+    if not target.parent.is_dir():
+        raise UsageError(f"directory {target.parent} of {target} does not exist")
+    for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):
+        print(f"figure: {path}")
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``groove`` argument parser with every subcommand."""
     parser = argparse.ArgumentParser(
@@ -142,11 +247,15 @@ def build_parser() -> argparse.ArgumentParser:
         description="Regime boundaries of an elastic ball in a rigid V-groove "
                     "(Halsey & Ertas, 'A Ball in a Groove').",
         epilog="examples:\n  groove solve --gamma 0.6 --delta 0.2 -k 1\n"
+               "  groove trace -k 1 -k 10 --out results/\n"
+               "  groove plot results/boundaries_k1.csv -o k1.png\n"
                "run 'groove COMMAND --help' for each command's options and examples",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     _add_solve(sub)
+    _add_trace(sub)
+    _add_plot(sub)
     return parser
 
 
