@@ -1,1 +1,46 @@
-"""Generic pseudo-arclength continuation of curves H(x) = 0, H: R^(n+1) -> R^n."""
+"""Generic pseudo-arclength continuation of curves H(x) = 0, H: R^(n+1) -> R^n.
+
+The engine follows a solution curve through folds in any coordinate, locates
+events, folds and simple branch points exactly, switches branches and closes
+loops (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
+Methods*, SIAM 2003; H. B. Keller, 1977). It imports numpy and scipy only.
+
+Example
+-------
+>>> import numpy as np
+>>> from continuation import Problem, Options, trace
+>>> circle = Problem(lambda x: np.array([x[0]**2 + x[1]**2 - 1.0]),
+...                  lambda x: np.array([[2 * x[0], 2 * x[1]]]))
+>>> curve = trace(circle, [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
+>>> curve.status.name
+'CLOSED'
+"""
+
+from .branching import branch_tangents, locate_branch_point, switch_branch
+from .events import Event, box_events
+from .options import Options
+from .problem import Problem, check_jacobian, finite_difference_jacobian
+from .result import ContinuationError, Curve, SpecialPoint, Status
+from .tracker import trace
+
+__all__ = [
+    "Problem",
+    "Options",
+    "Event",
+    "box_events",
+    "trace",
+    "switch_branch",
+    "branch_tangents",
+    "locate_branch_point",
+    "Curve",
+    "SpecialPoint",
+    "Status",
+    "ContinuationError",
+    "finite_difference_jacobian",
+    "check_jacobian",
+]
+
+import logging as _logging
+
+# a library logs, the application decides where it goes
+_logging.getLogger(__name__).addHandler(_logging.NullHandler())

@@ -1,0 +1,302 @@
+"""Simple branch points: location, branch tangents and branch switching."""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import replace
+from typing import Sequence
+
+import numpy as np
+
+from .events import Event
+from .options import Options
+from .problem import Evaluator, Problem
+from .result import Curve, SpecialPoint
+from .tracker import SINGULAR_RATIO, _as_vector, _trace
+
+__all__ = ["branch_tangents", "locate_branch_point", "switch_branch"]
+
+logger = logging.getLogger(__name__)
+
+_EPS = np.finfo(float).eps
+
+#: largest smallest-singular-value ratio accepted at a branch point
+BRANCH_POINT_RATIO = 1e-6
+
+#: step off an exactly singular point, relative to 1 + max|x|
+STEP_OFF = 1e-3
+
+
+def branch_tangents(problem: Problem, x_bp: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Return the unit tangents of the two branches through a simple branch point.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    x_bp : array_like, shape (n + 1,)
+        A located simple branch point (``rank H'(x_bp) = n - 1``).
+
+    Returns
+    -------
+    t1, t2 : ndarray, shape (n + 1,)
+        Unit tangents of the two branches (each up to sign).
+
+    Raises
+    ------
+    ValueError
+        If the Jacobian at ``x_bp`` is not rank deficient, or the algebraic
+        bifurcation equation has no two distinct real roots (not a simple
+        branch point).
+
+    Notes
+    -----
+    At a simple branch point the null space of ``H'`` is spanned by the
+    orthonormal ``v1, v2`` and the left null space by ``psi``. Branch tangents
+    ``t = alpha v1 + beta v2`` solve the algebraic bifurcation equation
+    (Allgower & Georg, sec. 8.1; Keller 1977)
+
+    .. math::
+
+        \\psi^T H''(x)[t, t] = a \\alpha^2 + 2 b \\alpha\\beta + c \\beta^2 = 0,
+        \\qquad b^2 - a c > 0,
+
+    with ``a = psi^T H''[v1, v1]``, ``b = psi^T H''[v1, v2]``,
+    ``c = psi^T H''[v2, v2]``. The second derivatives are central differences
+    of the Jacobian, ``H''[v, w] ~ (H'(x + h v) - H'(x - h v)) w / (2h)``
+    (four Jacobian evaluations). In the eigenbasis of the symmetric
+    ``Q = [[a, b], [b, c]]`` with eigenvalues ``l1 < 0 < l2`` the roots are
+    ``(sqrt(l2), +-sqrt(-l1))``.
+    """
+    return _branch_tangents(Evaluator(problem), _as_vector("x_bp", x_bp))
+
+
+def _branch_tangents(evaluator: Evaluator, x: np.ndarray):
+    J = evaluator.jacobian(x)
+    n = J.shape[0]
+    if J.shape != (n, x.size) or not np.isfinite(J).all():
+        raise ValueError(f"jacobian(x_bp) must be finite of shape ({x.size - 1}, {x.size})")
+    left, singular_values, right = np.linalg.svd(J, full_matrices=True)
+    v1, v2 = right[n - 1], right[n]
+    psi = left[:, n - 1]
+    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(x))))
+    d1 = (evaluator.jacobian(x + h * v1) - evaluator.jacobian(x - h * v1)) / (2.0 * h)
+    d2 = (evaluator.jacobian(x + h * v2) - evaluator.jacobian(x - h * v2)) / (2.0 * h)
+    a = float(psi @ d1 @ v1)
+    b = 0.5 * float(psi @ d1 @ v2 + psi @ d2 @ v1)
+    c = float(psi @ d2 @ v2)
+    quadratic = np.array([[a, b], [b, c]])
+    scale = singular_values[0] if n > 1 else float(np.max(np.abs(quadratic)))
+    if not singular_values[n - 1] <= BRANCH_POINT_RATIO * scale:
+        raise ValueError(
+            f"x_bp is not a branch point: the Jacobian's smallest singular value "
+            f"{singular_values[n - 1]:.3g} is not below {BRANCH_POINT_RATIO:g} x {scale:.3g}; "
+            "locate it first with locate_branch_point or take it from Curve.special"
+            "('branch_point')")
+    eigenvalues, rotation = np.linalg.eigh(quadratic)
+    if not eigenvalues[0] < 0 < eigenvalues[1]:
+        raise ValueError(
+            "x_bp is not a simple branch point: the algebraic bifurcation equation "
+            f"a*alpha^2 + 2*b*alpha*beta + c*beta^2 = 0 has a={a:.3g}, b={b:.3g}, c={c:.3g}, "
+            f"discriminant b^2 - a*c = {b * b - a * c:.3g} (must be > 0)")
+    tangents = []
+    for sign in (1.0, -1.0):
+        z = rotation @ np.array([math.sqrt(eigenvalues[1]), sign * math.sqrt(-eigenvalues[0])])
+        t = z[0] * v1 + z[1] * v2
+        tangents.append(t / np.linalg.norm(t))
+    return tangents[0], tangents[1]
+
+
+def locate_branch_point(
+    problem: Problem,
+    x_approx: np.ndarray,
+    options: Options | None = None,
+    radius: float | None = None,
+) -> SpecialPoint:
+    """Locate a simple branch point near an approximate point.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    x_approx : array_like, shape (n + 1,)
+        Approximate branch point.
+    options : Options, optional
+        Tolerances (``tol``, ``event_tol``, ``ds``).
+    radius : float, optional
+        Pseudo-arclength searched on each side; default
+        ``max(2 ds, 4 |x_c - x_approx|)`` with ``x_c`` the projection of
+        ``x_approx`` onto the curve.
+
+    Returns
+    -------
+    SpecialPoint
+        Kind ``'branch_point'``; ``tangent`` is the tangent of the branch on
+        which it was located, ``accuracy`` the final bracket width.
+
+    Raises
+    ------
+    ValueError
+        If ``x_approx`` cannot be projected onto ``H = 0`` or no branch point
+        lies within ``radius``.
+
+    Notes
+    -----
+    ``x_approx`` is projected onto ``H = 0`` by Gauss-Newton steps of minimal
+    norm, ``dx = -H'(x)^+ H(x)``. From there the branch is traced a short way
+    in both directions and the sign change of ``det [H'; t^T]`` is located
+    like any special point (Allgower & Georg, sec. 8.1 and 9.2). If the
+    projection is (numerically) the singular point itself, the search starts
+    from a point projected after a step of ``1e-3 (1 + max|x|)`` along the null
+    space.
+    """
+    options = Options() if options is None else options
+    return _locate_branch_point(Evaluator(problem), problem, _as_vector("x_approx", x_approx),
+                                options, radius)
+
+
+def _locate_branch_point(evaluator, problem, x_approx, options, radius):
+    x = _project(evaluator, x_approx, options)
+    J = evaluator.jacobian(x)
+    _, singular_values, right = np.linalg.svd(J, full_matrices=True)
+    if singular_values[0] == 0 or singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
+        step = STEP_OFF * (1.0 + float(np.max(np.abs(x))))
+        x = _project(evaluator, x + step * right[-1], options)
+        radius = 4.0 * step if radius is None else radius
+    elif radius is None:
+        radius = max(2.0 * options.ds, 4.0 * float(np.linalg.norm(x - x_approx)))
+    if not (radius > 0 and math.isfinite(radius)):
+        raise ValueError(f"radius must be a finite number > 0, got {radius!r}")
+    ds = min(options.ds, radius / 8.0)
+    local = replace(options, ds=ds, ds_min=min(options.ds_min, ds),
+                    ds_max=max(ds, min(options.ds_max, radius / 4.0)), max_arclength=radius,
+                    fold_coordinates=(), detect_branch_points=True, detect_closed=False,
+                    raise_on_failure=False)
+    candidates = []
+    for direction in (1, -1):
+        curve = _trace(problem, x, direction, local, (), None, evaluator)
+        candidates.extend(curve.special("branch_point"))
+    if not candidates:
+        raise ValueError(
+            f"no branch point found within arclength {radius:.3g} of x_approx="
+            f"{problem.describe(x_approx)}: det[H'; t^T] keeps its sign there; pass a closer "
+            "approximation or a larger radius")
+    best = min(candidates, key=lambda p: float(np.linalg.norm(p.x - x_approx)))
+    return replace(best, index=0, s=0.0)
+
+
+def _project(evaluator: Evaluator, x: np.ndarray, options: Options) -> np.ndarray:
+    """Gauss-Newton projection of ``x`` onto ``H = 0`` with minimal-norm steps."""
+    x = x.copy()
+    for _ in range(4 * options.max_newton):
+        H = evaluator.residual(x)
+        if not np.isfinite(H).all():
+            break
+        if float(np.max(np.abs(H))) <= options.tol:
+            return x
+        J = evaluator.jacobian(x)
+        if not np.isfinite(J).all():
+            break
+        x = x + np.linalg.lstsq(J, -H, rcond=None)[0]
+    raise ValueError(f"could not project x={evaluator.problem.describe(x)} onto H = 0 "
+                     "(Gauss-Newton did not converge); give a point closer to the curve")
+
+
+def switch_branch(
+    problem: Problem,
+    x_bp: SpecialPoint | np.ndarray,
+    direction: int | np.ndarray | None = None,
+    options: Options | None = None,
+    events: Sequence[Event] = (),
+    tangent_hint: np.ndarray | None = None,
+    branch: Curve | None = None,
+) -> Curve:
+    """Follow the other branch through a simple branch point.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    x_bp : SpecialPoint or array_like of shape (n + 1,)
+        A branch point from ``Curve.special('branch_point')`` (its tangent is
+        the current branch), or an approximate branch point, which is located
+        first with :func:`locate_branch_point`.
+    direction : {None, 1, -1} or array_like of shape (n + 1,), optional
+        Orientation of the new branch: ``None``/``+1`` along its tangent
+        normalised so that its largest-magnitude component is positive, ``-1``
+        the opposite way; an array: positive dot product with it (and, without
+        any current-branch information, the branch closest to it).
+    options : Options, optional
+        Options of the new trace.
+    events : sequence of Event, optional
+        Events of the new trace.
+    tangent_hint : array_like of shape (n + 1,), optional
+        Tangent of the current branch (overrides the one from ``x_bp``).
+    branch : Curve, optional
+        The current branch; its tangent at the point nearest ``x_bp`` is the
+        hint if none is given otherwise.
+
+    Returns
+    -------
+    Curve
+        Starts at the branch point (its first special point, kind
+        ``'branch_point'``); counters include the location and the tangents.
+
+    Raises
+    ------
+    ValueError
+        If the point is not a simple branch point, or the current branch is
+        unknown and ``direction`` is not an array.
+
+    Notes
+    -----
+    The two branch tangents come from the algebraic bifurcation equation
+    (:func:`branch_tangents`); the new branch is the one less parallel to the
+    current branch tangent. The trace starts at the branch point without a
+    correction (the bordered matrix is singular there); the first corrector
+    works in the hyperplane normal to the new tangent at distance ``ds``.
+    """
+    options = Options() if options is None else options
+    evaluator = Evaluator(problem)
+    if isinstance(x_bp, SpecialPoint):
+        x, accuracy, hint = x_bp.x.copy(), x_bp.accuracy, x_bp.tangent
+    else:
+        located = _locate_branch_point(evaluator, problem, _as_vector("x_bp", x_bp), options,
+                                       None)
+        x, accuracy, hint = located.x, located.accuracy, located.tangent
+    if branch is not None and tangent_hint is None:
+        nearest = int(np.argmin(np.linalg.norm(branch.x - x, axis=1)))
+        hint = branch.tangents[nearest]
+    if tangent_hint is not None:
+        hint = _as_vector("tangent_hint", tangent_hint)
+    first, second = _branch_tangents(evaluator, x)
+
+    reference = None
+    if direction is not None and not isinstance(direction, (int, np.integer)):
+        reference = _as_vector("direction", direction)
+        if reference.shape != x.shape:
+            raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, "
+                             f"got {direction!r}")
+    elif direction not in (None, 1, -1):
+        raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, got "
+                         f"{direction!r}")
+    if hint is not None:
+        new = first if abs(float(first @ hint)) < abs(float(second @ hint)) else second
+    elif reference is not None:
+        new = first if abs(float(first @ reference)) > abs(float(second @ reference)) \
+            else second
+    else:
+        raise ValueError("cannot tell the new branch from the current one: pass a SpecialPoint "
+                         "from a traced curve, tangent_hint=, branch= or a direction array")
+    if reference is not None:
+        dot = float(new @ reference)
+        if dot == 0:
+            raise ValueError("direction is orthogonal to the new branch's tangent")
+        new = new if dot > 0 else -new
+    else:
+        largest = int(np.argmax(np.abs(new)))
+        new = new * (math.copysign(1.0, new[largest]) * (1 if direction is None else direction))
+    logger.info("switching branch at x=%s along tangent %s", problem.describe(x), new)
+    return _trace(problem, x, None, options, events, new, evaluator,
+                  ("branch_point", "branch point", accuracy), at_branch_point=True)

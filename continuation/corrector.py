@@ -1,0 +1,299 @@
+"""Newton corrector on the Keller pseudo-arclength (bordered) system.
+
+Also the two small geometric helpers the corrector's callers share: the
+cubic Hermite arc between two curve points, used to predict trial points
+inside an accepted step, and the tangent at a point.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.linalg.lapack import dgetrf, dgetrs
+
+from .problem import Evaluator
+
+__all__ = ["Correction", "correct", "tangent_at", "hermite"]
+
+#: reasons a correction fails, used in log and status messages
+NON_FINITE = "non-finite residual or Jacobian"
+SINGULAR = "singular bordered Jacobian"
+DIVERGING = "Newton corrections not contracting"
+NO_CONVERGENCE = "no convergence within max_newton iterations"
+TOO_FAR = "first Newton correction longer than max_correction"
+
+
+class Correction:
+    """Outcome of one corrector call (internal, plain slots object for speed).
+
+    Attributes
+    ----------
+    ok : bool
+        Whether Newton converged.
+    reason : str
+        Why it failed (empty when ``ok``).
+    x : ndarray, shape (n + 1,)
+        Last iterate (the converged point when ``ok``).
+    tangent : ndarray or None
+        Unit tangent at ``x`` oriented with the border row (``None`` when not
+        requested and Newton converged without a Jacobian at ``x``).
+    det : float
+        ``det [H'(x); t^T]`` for the oriented tangent (0 when unknown).
+    residual : float
+        ``max |H(x)|``.
+    iterations : int
+        Newton steps taken from the prediction.
+    first_correction : float
+        2-norm of the first Newton correction (distance predictor-curve).
+    contraction : float
+        ``|dx_1| / |dx_0|``, the contraction rate of the first two corrections.
+    border_det : float
+        ``det [H'(x); b^T]`` for the border row ``b`` (0 when unknown); same
+        sign as ``det``, and well defined even where the tangent is not (at a
+        branch point it vanishes).
+    """
+
+    __slots__ = ("ok", "reason", "x", "tangent", "det", "residual", "iterations",
+                 "first_correction", "contraction", "border_det")
+
+    def __init__(self, ok, reason, x, tangent, det, residual, iterations,
+                 first_correction, contraction, border_det=0.0):
+        self.ok = ok
+        self.border_det = border_det
+        self.reason = reason
+        self.x = x
+        self.tangent = tangent
+        self.det = det
+        self.residual = residual
+        self.iterations = iterations
+        self.first_correction = first_correction
+        self.contraction = contraction
+
+
+def _factor(jacobian: np.ndarray, border: np.ndarray):
+    """LU-factor the bordered matrix ``[J; border^T]``; ``None`` if singular."""
+    n = jacobian.shape[0]
+    bordered = np.empty((n + 1, n + 1))
+    bordered[:n] = jacobian
+    bordered[n] = border
+    lu, piv, info = dgetrf(bordered, overwrite_a=1)
+    if info != 0:
+        return None
+    return lu, piv
+
+
+def _signed_det(lu: np.ndarray, piv: np.ndarray) -> float:
+    """Determinant from an LU factorisation ``P A = L U`` (LAPACK pivots)."""
+    swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
+    det = float(np.prod(lu.diagonal()))
+    return -det if swaps % 2 else det
+
+
+def correct(
+    evaluator: Evaluator,
+    x_pred: np.ndarray,
+    border: np.ndarray,
+    *,
+    tol: float,
+    xtol: float,
+    max_newton: int,
+    max_contraction: float,
+    max_correction: float = math.inf,
+    target: float | None = None,
+    need_tangent: bool = True,
+    residual: np.ndarray | None = None,
+    jacobian: np.ndarray | None = None,
+) -> Correction:
+    """Correct a predicted point onto the curve by Newton's method.
+
+    Parameters
+    ----------
+    evaluator : Evaluator
+        Counting evaluator of the problem.
+    x_pred : ndarray, shape (n + 1,)
+        Predicted point, the first iterate.
+    border : ndarray, shape (n + 1,)
+        Border row ``b``; the corrected point satisfies ``b^T x = target``.
+    tol : float
+        Residual tolerance, ``max |H(x)| <= tol``.
+    xtol : float
+        Correction tolerance, ``max |dx| <= xtol (1 + max |x|)``.
+    max_newton : int
+        Maximum number of Newton steps.
+    max_contraction : float
+        Largest accepted ratio ``|dx_(k+1)| / |dx_k|`` while ``|dx|`` is above
+        the correction tolerance.
+    max_correction : float, optional
+        Largest accepted 2-norm of the first correction.
+    target : float or None, optional
+        Right-hand side of the border equation; ``None`` means ``b^T x_pred``
+        (the hyperplane through the prediction).
+    need_tangent : bool, optional
+        Whether the tangent at the converged point is needed. If not, a
+        converged iterate is accepted on its residual and the simplified
+        Newton correction with the previous factorisation, saving a Jacobian.
+    residual, jacobian : ndarray or None, optional
+        ``H(x_pred)`` and ``H'(x_pred)`` if already evaluated.
+
+    Returns
+    -------
+    Correction
+
+    Notes
+    -----
+    Each step solves Keller's bordered system [1]_
+
+    .. math::
+
+        \\begin{pmatrix} H'(x_k) \\\\ b^T \\end{pmatrix} \\Delta x_k
+        = -\\begin{pmatrix} H(x_k) \\\\ b^T x_k - \\text{target} \\end{pmatrix},
+
+    and, with the same LU factors, :math:`[H'; b^T] v = e_{n+1}`, whose
+    normalisation is the tangent ``t = v / |v|`` oriented so that
+    ``b^T t > 0`` (Allgower & Georg, sec. 2.1 and 3.4). The determinant
+    ``det [H'; t^T] = |v| det [H'; b^T]`` follows without extra work; its sign
+    changes at simple branch points, not at folds (Allgower & Georg,
+    Theorem 8.1.14). The iterate is accepted when its residual and the next
+    correction are below tolerance; the correction is not applied, so the
+    returned point's residual is the one checked.
+
+    References
+    ----------
+    .. [1] H. B. Keller, "Numerical solution of bifurcation and nonlinear
+       eigenvalue problems", in *Applications of Bifurcation Theory*,
+       Academic Press, 1977, pp. 359-384.
+    """
+    n1 = x_pred.size
+    if target is None:
+        target = float(border @ x_pred)
+    x = x_pred
+    H = evaluator.residual(x) if residual is None else residual
+    if not np.isfinite(H).all():
+        return Correction(False, NON_FINITE, x, None, 0.0, math.inf, 0, 0.0, 0.0)
+    J = evaluator.jacobian(x) if jacobian is None else jacobian
+    rhs = np.zeros((n1, 2))
+    rhs[n1 - 1, 1] = 1.0
+    first = 0.0
+    contraction = 0.0
+    previous = math.inf
+    factors = None
+    for k in range(max_newton + 1):
+        rnorm = float(np.max(np.abs(H))) if H.size else 0.0
+        if not rnorm < math.inf or (J is not None and not np.isfinite(J).all()):
+            return Correction(False, NON_FINITE, x, None, 0.0, math.inf, k, first, contraction)
+        if J is None:
+            # Simplified Newton step with the previous factors (Deuflhard's
+            # contraction monitor): if the residual and this estimate of the
+            # next correction are both small, x is accepted without a Jacobian.
+            rhs[: n1 - 1, 0] = -H
+            rhs[n1 - 1, 0] = target - float(border @ x)
+            solution, _ = dgetrs(factors[0], factors[1], rhs)
+            estimate = float(np.max(np.abs(solution[:, 0])))
+            if rnorm <= tol and estimate <= xtol * (1.0 + float(np.max(np.abs(x)))):
+                contraction = contraction or estimate / max(first, 1e-300)
+                return Correction(True, "", x, None, 0.0, rnorm, k, first, contraction)
+            J = evaluator.jacobian(x)
+            if not np.isfinite(J).all():
+                return Correction(False, NON_FINITE, x, None, 0.0, rnorm, k, first, contraction)
+        factors = _factor(J, border)
+        if factors is None:
+            return Correction(False, SINGULAR, x, None, 0.0, rnorm, k, first, contraction)
+        rhs[: n1 - 1, 0] = -H
+        rhs[n1 - 1, 0] = target - float(border @ x)
+        solution, _ = dgetrs(factors[0], factors[1], rhs)
+        dx = solution[:, 0]
+        dnorm = float(np.max(np.abs(dx)))
+        if not dnorm < math.inf:
+            return Correction(False, SINGULAR, x, None, 0.0, rnorm, k, first, contraction)
+        small = dnorm <= xtol * (1.0 + float(np.max(np.abs(x))))
+        if k == 0:
+            first = float(np.linalg.norm(dx))
+            if first > max_correction:
+                return Correction(False, TOO_FAR, x, None, 0.0, rnorm, k, first, contraction)
+        elif k == 1:
+            contraction = dnorm / max(previous, 1e-300)
+        if k > 0 and not small and dnorm > max_contraction * previous:
+            return Correction(False, DIVERGING, x, None, 0.0, rnorm, k, first,
+                              dnorm / max(previous, 1e-300))
+        if rnorm <= tol and small:
+            v = solution[:, 1]
+            vnorm = float(np.linalg.norm(v))
+            border_det = _signed_det(*factors)
+            return Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
+                              contraction, border_det)
+        if k == max_newton:
+            break
+        previous = dnorm
+        x = x + dx
+        H = evaluator.residual(x)
+        J = evaluator.jacobian(x) if need_tangent else None
+    return Correction(False, NO_CONVERGENCE, x, None, 0.0, rnorm, max_newton, first, contraction)
+
+
+def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):
+    """Return the unit tangent at ``x`` oriented with ``border``, and its determinant.
+
+    Parameters
+    ----------
+    evaluator : Evaluator
+        Counting evaluator (one Jacobian evaluation).
+    x : ndarray, shape (n + 1,)
+        A point on the curve.
+    border : ndarray, shape (n + 1,)
+        Orientation reference, ``border^T t > 0``.
+
+    Returns
+    -------
+    tangent : ndarray, shape (n + 1,) or None
+        ``None`` if ``[H'(x); border^T]`` is singular.
+    det : float
+        ``det [H'(x); t^T]``.
+    """
+    J = evaluator.jacobian(x)
+    if not np.isfinite(J).all():
+        return None, 0.0
+    factors = _factor(J, border)
+    if factors is None:
+        return None, 0.0
+    rhs = np.zeros(x.size)
+    rhs[-1] = 1.0
+    v, _ = dgetrs(factors[0], factors[1], rhs)
+    vnorm = float(np.linalg.norm(v))
+    if not 0 < vnorm < math.inf:
+        return None, 0.0
+    return v / vnorm, vnorm * _signed_det(*factors)
+
+
+def hermite(x_a, t_a, x_b, t_b, h, sigma):
+    """Cubic Hermite arc between two curve points and its derivative.
+
+    Parameters
+    ----------
+    x_a, x_b : ndarray, shape (n + 1,)
+        End points, ``h`` apart in pseudo-arclength.
+    t_a, t_b : ndarray, shape (n + 1,)
+        Unit tangents (derivatives with respect to arclength) at the ends.
+    h : float
+        Pseudo-arclength between the ends.
+    sigma : float
+        Pseudo-arclength from ``x_a``, ``0 <= sigma <= h``.
+
+    Returns
+    -------
+    point, derivative : ndarray, shape (n + 1,)
+        ``p(sigma)`` and ``p'(sigma)``; ``|p - x(s_a + sigma)| = O(h^4)``.
+
+    Notes
+    -----
+    ``p = h00 x_a + h10 h t_a + h01 x_b + h11 h t_b`` with the cubic Hermite
+    basis of ``u = sigma / h`` (de Boor, *A Practical Guide to Splines*).
+    """
+    u = sigma / h
+    u2 = u * u
+    u3 = u2 * u
+    point = ((2 * u3 - 3 * u2 + 1) * x_a + (u3 - 2 * u2 + u) * h * t_a
+             + (-2 * u3 + 3 * u2) * x_b + (u3 - u2) * h * t_b)
+    derivative = ((6 * u2 - 6 * u) / h * x_a + (3 * u2 - 4 * u + 1) * t_a
+                  + (-6 * u2 + 6 * u) / h * x_b + (3 * u2 - 2 * u) * t_b)
+    return point, derivative

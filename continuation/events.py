@@ -1,0 +1,332 @@
+"""Events (scalar functions of a curve point) and the locator of their zeros.
+
+The locator is shared by events, folds and branch points: a zero of a scalar
+function ``f(s)`` along the curve, bracketed between two accepted points, is
+found by Brent's method in the pseudo-arclength ``s``; every trial point is
+predicted on the cubic Hermite arc of the step and corrected onto the curve.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import numbers
+from dataclasses import dataclass
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from .corrector import Correction, correct, hermite, tangent_at
+from .options import Options
+from .problem import Evaluator
+
+__all__ = ["Event", "box_events", "crossed", "locate_zero", "Located", "LocateError"]
+
+logger = logging.getLogger(__name__)
+
+_EPS = np.finfo(float).eps
+
+#: a corrected trial point may move at most this fraction of its Hermite interval
+JUMP = 0.1
+
+#: a trial's tangent is used when its cosine with the interpolated tangent exceeds this
+RELIABLE = math.cos(0.1)
+
+
+@dataclass(frozen=True)
+class Event:
+    """A scalar function of the curve point whose zeros are located.
+
+    Parameters
+    ----------
+    name : str
+        Name, reported in ``SpecialPoint.name``.
+    function : callable
+        ``function(x) -> float`` for ``x`` of shape ``(n + 1,)``.
+    direction : {0, 1, -1}, optional
+        ``+1``: only zeros where the function increases along the curve,
+        ``-1``: only where it decreases, ``0`` (default): both.
+    terminal : bool, optional
+        Stop the curve at the (first) zero.
+
+    Raises
+    ------
+    ValueError
+        If ``direction`` is not -1, 0 or 1 or the name is empty.
+    TypeError
+        If ``function`` is not callable.
+    """
+
+    name: str
+    function: Callable[[np.ndarray], float]
+    direction: int = 0
+    terminal: bool = False
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"Event.name must be a non-empty str, got {self.name!r}")
+        if not callable(self.function):
+            raise TypeError(f"Event.function must be callable, got {self.function!r}")
+        if self.direction not in (-1, 0, 1) or isinstance(self.direction, bool):
+            raise ValueError(f"Event.direction must be -1, 0 or 1, got {self.direction!r}")
+        if not isinstance(self.terminal, bool):
+            raise ValueError(f"Event.terminal must be True or False, got {self.terminal!r}")
+
+
+def box_events(
+    lower: Mapping[int, float] | Sequence[float | None] = (),
+    upper: Mapping[int, float] | Sequence[float | None] = (),
+    names: Sequence[str] | None = None,
+) -> list[Event]:
+    """Terminal events that stop a curve where it leaves a box.
+
+    Parameters
+    ----------
+    lower, upper : dict {int: float} or sequence of float/None
+        Bounds per coordinate; in a sequence, ``None`` or an infinite value
+        means no bound.
+    names : sequence of str or None, optional
+        Coordinate names (e.g. ``Problem.names``) used in the event names.
+
+    Returns
+    -------
+    list of Event
+        For a lower bound ``L`` on coordinate ``i`` an event named
+        ``"x[i] >= L"`` with function ``x[i] - L`` and direction ``-1``; for an
+        upper bound ``U`` one named ``"x[i] <= U"`` with function ``x[i] - U``
+        and direction ``+1``. All terminal.
+
+    Raises
+    ------
+    ValueError
+        If an index is negative, a bound is NaN, or a lower bound is not below
+        the upper bound of the same coordinate.
+    """
+    lows = _bounds("lower", lower)
+    highs = _bounds("upper", upper)
+    for i in set(lows) & set(highs):
+        if not lows[i] < highs[i]:
+            raise ValueError(
+                f"box bounds of coordinate {i} must satisfy lower < upper, got "
+                f"lower={lows[i]!r}, upper={highs[i]!r}"
+            )
+
+    def label(i: int) -> str:
+        return names[i] if names is not None and i < len(names) else f"x[{i}]"
+
+    events = []
+    for i, bound in sorted(lows.items()):
+        events.append(Event(f"{label(i)} >= {bound!r}", _Offset(i, bound), -1, True))
+    for i, bound in sorted(highs.items()):
+        events.append(Event(f"{label(i)} <= {bound!r}", _Offset(i, bound), 1, True))
+    return events
+
+
+@dataclass(frozen=True)
+class _Offset:
+    """``x[index] - value`` (a picklable event function)."""
+
+    index: int
+    value: float
+
+    def __call__(self, x: np.ndarray) -> float:
+        return x[self.index] - self.value
+
+
+def _bounds(which: str, bounds) -> dict[int, float]:
+    if isinstance(bounds, Mapping):
+        items = bounds.items()
+    else:
+        items = enumerate(bounds)
+    result = {}
+    for i, bound in items:
+        if bound is None:
+            continue
+        if not isinstance(i, numbers.Integral) or i < 0:
+            raise ValueError(f"{which} bound index must be an integer >= 0, got {i!r}")
+        bound = float(bound)
+        if math.isnan(bound):
+            raise ValueError(f"{which} bound of coordinate {i} must not be NaN")
+        if math.isinf(bound):
+            continue
+        result[int(i)] = bound
+    return result
+
+
+def crossed(before: float, after: float, direction: int = 0) -> bool:
+    """Whether a function crosses zero on a step, in ``(before, after]``.
+
+    A zero at the step's start is not a crossing (it belongs to the previous
+    step, or is the start point); a zero at its end is.
+    """
+    if before == 0.0 or not (before * after <= 0.0):
+        return False
+    if direction == 0:
+        return True
+    return (after > before) == (direction > 0)
+
+
+class LocateError(RuntimeError):
+    """A trial point of the locator could not be corrected onto the curve."""
+
+
+class Located:
+    """A located zero (internal): the corrected point and the bracket width."""
+
+    __slots__ = ("s", "correction", "accuracy", "endpoint")
+
+    def __init__(self, s: float, correction: Correction | None, accuracy: float,
+                 endpoint: str | None) -> None:
+        self.s = s
+        self.correction = correction
+        self.accuracy = accuracy
+        self.endpoint = endpoint
+
+
+def locate_zero(
+    evaluator: Evaluator,
+    options: Options,
+    function: Callable[[Correction], float],
+    start,
+    end,
+    f_start: float,
+    f_end: float,
+    need_tangent: bool,
+) -> Located:
+    """Locate the zero of ``function`` along the curve between two points.
+
+    Parameters
+    ----------
+    evaluator : Evaluator
+        Counting evaluator of the problem.
+    options : Options
+        ``event_tol`` is the bracket width; ``tol`` the residual tolerance.
+    function : callable
+        ``function(correction) -> float`` of a corrected trial point.
+    start, end : object with ``x``, ``s``, ``tangent``
+        Accepted curve points bracketing the zero.
+    f_start, f_end : float
+        The function at ``start`` and ``end``, of opposite signs (or
+        ``f_end == 0``).
+    need_tangent : bool
+        Whether ``function`` uses the tangent or determinant.
+
+    Returns
+    -------
+    Located
+        ``endpoint`` is ``'start'``/``'end'`` when the best point is an
+        accepted point, else ``correction`` is the located point (with its
+        tangent).
+
+    Raises
+    ------
+    LocateError
+        If a trial point cannot be corrected.
+
+    Notes
+    -----
+    Brent's method [1]_ (inverse quadratic interpolation and secant steps
+    safeguarded by bisection) on ``f(s)`` keeps a bracket and stops when it is
+    at most ``event_tol + 4 eps |s|`` wide. A trial point at ``s`` is the
+    cubic Hermite prediction ``p(s)``, corrected by Newton in the hyperplane
+    through ``p(s)`` normal to ``p'(s)`` (Allgower & Georg, sec. 9.2).
+
+    References
+    ----------
+    .. [1] R. P. Brent, *Algorithms for Minimization without Derivatives*,
+       Prentice-Hall, 1973, ch. 4.
+    """
+    if f_end == 0.0:
+        return Located(end.s, None, 0.0, "end")
+    h = end.s - start.s
+    trials: dict[float, Correction] = {}
+    # curve points with exact tangents, (s, x, tangent), sorted by s: the
+    # prediction of a trial uses the nearest on either side, so that its error,
+    # O(width^4), vanishes as the bracket shrinks and Newton has little to do
+    nodes = [(start.s, start.x, start.tangent), (end.s, end.x, end.tangent)]
+
+    def evaluate(s: float) -> float:
+        k = next(k for k in range(1, len(nodes)) if nodes[k][0] >= s)
+        (s_a, x_a, t_a), (s_b, x_b, t_b) = nodes[k - 1], nodes[k]
+        point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s - s_a)
+        border = derivative / np.linalg.norm(derivative)
+        result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
+                         max_newton=options.max_newton,
+                         max_contraction=options.newton_contraction,
+                         need_tangent=need_tangent)
+        if not result.ok:
+            raise LocateError(f"trial point at s={s!r} not corrected: {result.reason}")
+        if float(np.linalg.norm(result.x - point)) > JUMP * (s_b - s_a):
+            raise LocateError(f"trial point at s={s!r} moved {np.linalg.norm(result.x - point)!r}"
+                              " from its prediction: it may have jumped to another branch")
+        if result.tangent is not None and float(result.tangent @ border) < RELIABLE:
+            # next to a branch point the computed null vector is noise; the
+            # interpolated tangent is the branch's tangent
+            result.tangent = border
+        elif result.tangent is not None:
+            nodes.insert(k, (s, result.x, result.tangent))
+        trials[s] = result
+        value = float(function(result))
+        if not math.isfinite(value):
+            raise LocateError(f"the located function is {value!r} at s={s!r}")
+        return value
+
+    s, _, width = _brent(evaluate, start.s, f_start, end.s, f_end, options.event_tol)
+    if s == start.s:
+        return Located(s, None, width, "start")
+    if s == end.s:
+        return Located(s, None, width, "end")
+    result = trials[s]
+    if result.tangent is None:
+        _, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
+        result.tangent, result.det = tangent_at(evaluator, result.x, derivative)
+        if result.tangent is None:
+            raise LocateError(f"no tangent at the located point s={s!r}")
+    return Located(s, result, width, None)
+
+
+def _brent(f, a: float, fa: float, b: float, fb: float, xtol: float,
+           max_iterations: int = 100) -> tuple[float, float, float]:
+    """Brent's root finder on a bracket; returns ``(root, f(root), bracket width)``."""
+    c, fc = a, fa
+    d = e = b - a
+    for _ in range(max_iterations):
+        if (fb > 0) == (fc > 0) and fb != 0:
+            c, fc = a, fa
+            d = e = b - a
+        if abs(fc) < abs(fb):
+            a, fa = b, fb
+            b, fb = c, fc
+            c, fc = a, fa
+        tol1 = 2.0 * _EPS * abs(b) + 0.5 * xtol
+        m = 0.5 * (c - b)
+        if fb == 0.0:
+            return b, fb, 0.0
+        if abs(m) <= tol1:
+            return b, fb, abs(c - b)
+        if abs(e) >= tol1 and abs(fa) > abs(fb):
+            s = fb / fa
+            if a == c:
+                p = 2.0 * m * s
+                q = 1.0 - s
+            else:
+                q = fa / fc
+                r = fb / fc
+                p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if p > 0:
+                q = -q
+            else:
+                p = -p
+            if 2.0 * p < min(3.0 * m * q - abs(tol1 * q), abs(e * q)):
+                e = d
+                d = p / q
+            else:
+                d = e = m
+        else:
+            d = e = m
+        a, fa = b, fb
+        b = b + d if abs(d) > tol1 else b + math.copysign(tol1, m)
+        fb = f(b)
+    logger.warning("Brent's method did not reach the bracket width %g", xtol)
+    return b, fb, abs(c - b)

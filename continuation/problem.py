@@ -1,0 +1,242 @@
+"""The problem: a residual ``H: R^(n+1) -> R^n`` and its Jacobian.
+
+No coordinate is privileged (Allgower & Georg's formulation): the curve
+``H(x) = 0`` may turn with respect to any coordinate.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+__all__ = ["Problem", "finite_difference_jacobian", "check_jacobian"]
+
+logger = logging.getLogger(__name__)
+
+_EPS = np.finfo(float).eps
+
+
+@dataclass(frozen=True)
+class Problem:
+    """An underdetermined system ``H(x) = 0`` whose solution set is a curve.
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(x) -> ndarray, shape (n,)`` for ``x`` of shape ``(n + 1,)``.
+    jacobian : callable or None, optional
+        ``jacobian(x) -> ndarray, shape (n, n + 1)``, the derivative
+        ``dH/dx``. ``None`` (default) uses central finite differences
+        (:func:`finite_difference_jacobian`), costing ``2 (n + 1)`` residual
+        evaluations per Jacobian.
+    names : tuple of str or None, optional
+        Names of the ``n + 1`` coordinates, used in messages, fold names and
+        box event names. ``None`` names them ``x[0]``, ``x[1]``, ...
+
+    Notes
+    -----
+    Regular points of the curve are those where ``rank H'(x) = n``; there the
+    curve has a unique unit tangent ``t`` with ``H'(x) t = 0`` [1]_.
+
+    References
+    ----------
+    .. [1] E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
+       Methods*, SIAM Classics in Applied Mathematics 45, 2003, ch. 2.
+    """
+
+    residual: Callable[[np.ndarray], np.ndarray]
+    jacobian: Callable[[np.ndarray], np.ndarray] | None = None
+    names: tuple[str, ...] | None = None
+
+    def __post_init__(self) -> None:
+        if not callable(self.residual):
+            raise TypeError(
+                f"Problem.residual must be callable, got {type(self.residual).__name__}"
+            )
+        if self.jacobian is not None and not callable(self.jacobian):
+            raise TypeError(
+                "Problem.jacobian must be callable or None, got "
+                f"{type(self.jacobian).__name__}"
+            )
+        if self.names is not None:
+            names = tuple(self.names)
+            if not all(isinstance(name, str) for name in names):
+                raise TypeError(f"Problem.names must be a tuple of str, got {self.names!r}")
+            object.__setattr__(self, "names", names)
+
+    def coordinate_name(self, index: int) -> str:
+        """Return the name of coordinate ``index`` (``names[index]`` or ``x[index]``)."""
+        if self.names is not None and 0 <= index < len(self.names):
+            return self.names[index]
+        return f"x[{index}]"
+
+    def describe(self, x: np.ndarray) -> str:
+        """Return ``x`` formatted with the coordinate names, for messages."""
+        return "(" + ", ".join(
+            f"{self.coordinate_name(i)}={value:.10g}" for i, value in enumerate(x)
+        ) + ")"
+
+
+def finite_difference_jacobian(
+    residual: Callable[[np.ndarray], np.ndarray],
+    x: np.ndarray,
+    step: float | np.ndarray | None = None,
+) -> np.ndarray:
+    """Approximate the Jacobian of ``residual`` at ``x`` by central differences.
+
+    Parameters
+    ----------
+    residual : callable
+        ``residual(x) -> ndarray, shape (n,)``.
+    x : array_like, shape (n + 1,)
+        Point of evaluation.
+    step : float or array_like of shape (n + 1,) or None, optional
+        Difference step per coordinate. ``None`` (default) uses
+        ``h_j = eps^(1/3) max(1, |x_j|)``, which balances the truncation error
+        ``O(h^2)`` against the rounding error ``O(eps / h)``.
+
+    Returns
+    -------
+    ndarray, shape (n, n + 1)
+        ``J[:, j] = (H(x + h_j e_j) - H(x - h_j e_j)) / (2 h_j)``.
+
+    Raises
+    ------
+    ValueError
+        If ``x`` is not a finite 1-D array or a step is not positive.
+
+    Notes
+    -----
+    Costs ``2 (n + 1)`` residual evaluations; the error is
+    ``O(h^2 |H'''| + eps |H| / h)``, about ``1e-10`` relative for smooth ``H``
+    (Dennis & Schnabel, *Numerical Methods for Unconstrained Optimization and
+    Nonlinear Equations*, SIAM 1996, sec. 5.6).
+    """
+    x = np.asarray(x, dtype=float)
+    if x.ndim != 1 or not np.all(np.isfinite(x)):
+        raise ValueError(f"x must be a finite 1-D array, got {x!r}")
+    if step is None:
+        steps = _EPS ** (1.0 / 3.0) * np.maximum(1.0, np.abs(x))
+    else:
+        steps = np.broadcast_to(np.asarray(step, dtype=float), x.shape)
+        if not np.all(steps > 0):
+            raise ValueError(f"step must be positive, got {step!r}")
+    columns = []
+    for j in range(x.size):
+        forward = x.copy()
+        backward = x.copy()
+        forward[j] += steps[j]
+        backward[j] -= steps[j]
+        # the actually representable difference, not the nominal step
+        width = forward[j] - backward[j]
+        columns.append(
+            (np.asarray(residual(forward), dtype=float)
+             - np.asarray(residual(backward), dtype=float)) / width
+        )
+    return np.stack(columns, axis=-1).reshape(-1, x.size)
+
+
+def check_jacobian(
+    problem_or_residual: Problem | Callable[[np.ndarray], np.ndarray],
+    jacobian: Callable[[np.ndarray], np.ndarray] | None,
+    x: np.ndarray,
+    rtol: float = 1e-6,
+    atol: float = 1e-8,
+    *,
+    raise_on_error: bool = False,
+) -> float:
+    """Compare a Jacobian with central finite differences of the residual.
+
+    Parameters
+    ----------
+    problem_or_residual : Problem or callable
+        The problem (its residual is differenced) or a residual function.
+    jacobian : callable or None
+        The Jacobian to check; ``None`` takes ``problem.jacobian``.
+    x : array_like, shape (n + 1,)
+        Point of the check.
+    rtol, atol : float, optional
+        An entry fails when ``|J - J_fd| > atol + rtol |J_fd|``.
+    raise_on_error : bool, optional
+        Raise instead of logging a warning when an entry fails.
+
+    Returns
+    -------
+    float
+        ``max |J - J_fd|`` over all entries.
+
+    Raises
+    ------
+    ValueError
+        If no Jacobian is available, shapes disagree, or (with
+        ``raise_on_error=True``) an entry exceeds the tolerance; the message
+        names the worst entry.
+    """
+    if isinstance(problem_or_residual, Problem):
+        residual = problem_or_residual.residual
+        if jacobian is None:
+            jacobian = problem_or_residual.jacobian
+        names = problem_or_residual
+    else:
+        residual = problem_or_residual
+        names = Problem(residual)
+    if jacobian is None:
+        raise ValueError("check_jacobian needs a jacobian: the problem has none and none was passed")
+    if rtol < 0 or atol < 0:
+        raise ValueError(f"rtol and atol must be >= 0, got rtol={rtol!r}, atol={atol!r}")
+    x = np.asarray(x, dtype=float)
+    reference = finite_difference_jacobian(residual, x)
+    supplied = np.asarray(jacobian(x), dtype=float)
+    if supplied.shape != reference.shape:
+        raise ValueError(
+            f"jacobian(x) has shape {supplied.shape}, expected {reference.shape} "
+            "(n equations by n + 1 unknowns)"
+        )
+    error = np.abs(supplied - reference)
+    excess = error - (atol + rtol * np.abs(reference))
+    worst = np.unravel_index(int(np.argmax(excess)), excess.shape)
+    if excess[worst] > 0 or not np.all(np.isfinite(supplied)):
+        row, col = int(worst[0]), int(worst[1])
+        message = (
+            f"Jacobian entry dH[{row}]/d{names.coordinate_name(col)} at x={names.describe(x)} "
+            f"is {supplied[row, col]:.10g}, central differences give {reference[row, col]:.10g} "
+            f"(error {error[row, col]:.3g} > atol + rtol*|J_fd| = "
+            f"{atol + rtol * abs(reference[row, col]):.3g})"
+        )
+        if raise_on_error:
+            raise ValueError(message)
+        logger.warning(message)
+    return float(np.max(error)) if error.size else 0.0
+
+
+class Evaluator:
+    """Counting evaluator of a :class:`Problem` (internal).
+
+    ``residual_evals`` counts every call of ``problem.residual``, including
+    the ``2 (n + 1)`` calls of each finite-difference Jacobian;
+    ``jacobian_evals`` counts Jacobians (supplied or finite-difference).
+    """
+
+    __slots__ = ("problem", "residual_evals", "jacobian_evals", "_residual", "_jacobian")
+
+    def __init__(self, problem: Problem) -> None:
+        self.problem = problem
+        self.residual_evals = 0
+        self.jacobian_evals = 0
+        self._residual = problem.residual
+        self._jacobian = problem.jacobian
+
+    def residual(self, x: np.ndarray) -> np.ndarray:
+        """Return ``H(x)`` as a float array and count it."""
+        self.residual_evals += 1
+        return np.asarray(self._residual(x), dtype=float)
+
+    def jacobian(self, x: np.ndarray) -> np.ndarray:
+        """Return ``H'(x)`` as a float array and count it."""
+        self.jacobian_evals += 1
+        if self._jacobian is None:
+            return finite_difference_jacobian(self.residual, x)
+        return np.asarray(self._jacobian(x), dtype=float)

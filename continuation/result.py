@@ -1,0 +1,292 @@
+"""The result of a continuation run: a curve, its special points and a status."""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .corrector import correct, hermite
+from .options import Options
+from .problem import Evaluator, Problem
+
+__all__ = ["Status", "SpecialPoint", "Curve", "ContinuationError", "SPECIAL_KINDS"]
+
+#: kinds of :class:`SpecialPoint`
+SPECIAL_KINDS = ("start", "end", "fold", "branch_point", "event", "closed")
+
+
+class Status(enum.Enum):
+    """How a run ended; the value is a readable message."""
+
+    CLOSED = "the curve closed on its start point"
+    TERMINAL_EVENT = "a terminal event stopped the curve"
+    MAX_STEPS = "reached the maximum number of steps"
+    MAX_ARCLENGTH = "reached the maximum arclength"
+    STEP_TOO_SMALL = "the step size fell below its minimum"
+    START_NOT_CONVERGED = "the start point could not be corrected onto the curve"
+    SINGULAR_START = "the Jacobian is singular at the start point"
+    NON_FINITE = "the residual or Jacobian returned non-finite values"
+
+    @property
+    def failed(self) -> bool:
+        """Whether the run ended in a failure rather than a normal end."""
+        return self in _FAILURES
+
+
+_FAILURES = frozenset({Status.STEP_TOO_SMALL, Status.START_NOT_CONVERGED,
+                       Status.SINGULAR_START, Status.NON_FINITE})
+
+
+@dataclass(frozen=True, eq=False)
+class SpecialPoint:
+    """A located point of interest on a curve.
+
+    Parameters
+    ----------
+    kind : str
+        One of ``'start'``, ``'end'``, ``'fold'``, ``'branch_point'``,
+        ``'event'``, ``'closed'``.
+    name : str
+        Event name, ``'fold <coordinate>'``, ``'branch point'``, ``'start'``,
+        ``'closed'``, or for ``'end'`` the lower-case status name.
+    index : int
+        Index of the point in ``Curve.x`` (special points are points of the
+        curve).
+    x : ndarray, shape (n + 1,)
+        The point.
+    s : float
+        Its pseudo-arclength.
+    residual : float
+        ``max |H(x)|``.
+    accuracy : float
+        Width in pseudo-arclength of the final root bracket (0 if the located
+        function vanished exactly at an accepted point; for start and end
+        points, the Newton tolerance reached).
+    coordinate : int or None
+        The coordinate of a fold, else ``None``.
+    tangent : ndarray, shape (n + 1,) or None
+        Unit tangent of the traced branch at the point.
+    """
+
+    kind: str
+    name: str
+    index: int
+    x: np.ndarray = field(repr=False)
+    s: float
+    residual: float
+    accuracy: float
+    coordinate: int | None = None
+    tangent: np.ndarray | None = field(default=None, repr=False)
+
+
+class ContinuationError(RuntimeError):
+    """A continuation run failed; ``curve`` holds the partial :class:`Curve`."""
+
+    def __init__(self, message: str, curve: "Curve") -> None:
+        super().__init__(message)
+        self.curve = curve
+
+
+@dataclass(frozen=True, eq=False)
+class Curve:
+    """A traced piece of the solution curve of ``H(x) = 0``.
+
+    Parameters
+    ----------
+    x : ndarray, shape (m, n + 1)
+        Points, every one with ``max |H| <= tol``, in order of arclength;
+        special points are among them.
+    s : ndarray, shape (m,)
+        Pseudo-arclength, increasing; equal to arclength up to ``O(ds^3)`` per
+        step (Keller's hyperplane constraint).
+    tangents : ndarray, shape (m, n + 1)
+        Unit tangents, oriented along the direction of travel.
+    ds : ndarray, shape (m,)
+        ``s[i] - s[i - 1]``, 0 at the start.
+    newton_iterations : ndarray of int, shape (m,)
+        Newton steps that produced each point.
+    special_points : tuple of SpecialPoint
+        Start (or branch point), folds, branch points, events, closure, end,
+        ordered by index.
+    status : Status
+        How the run ended.
+    message : str
+        What happened, and for failures where and what to change.
+    residual_evals, jacobian_evals : int
+        Calls of the residual (including those of finite-difference
+        Jacobians) and Jacobians.
+    rejected_steps : int
+        Rejected predictor-corrector steps.
+    residuals : ndarray, shape (m,)
+        ``max |H|`` at every point.
+    problem : Problem
+        The problem (for dense output).
+    options : Options
+        The options of the run (tolerances for dense output).
+    """
+
+    x: np.ndarray
+    s: np.ndarray
+    tangents: np.ndarray
+    ds: np.ndarray
+    newton_iterations: np.ndarray
+    special_points: tuple[SpecialPoint, ...]
+    status: Status
+    message: str
+    residual_evals: int
+    jacobian_evals: int
+    rejected_steps: int
+    residuals: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    problem: Problem | None = field(default=None, compare=False, repr=False)
+    options: Options | None = field(default=None, compare=False, repr=False)
+
+    def __len__(self) -> int:
+        return int(self.s.size)
+
+    @property
+    def ok(self) -> bool:
+        """Whether the run ended normally (``not status.failed``)."""
+        return not self.status.failed
+
+    @property
+    def max_residual(self) -> float:
+        """``max |H(x)|`` over all points (0 for an empty curve)."""
+        return float(self.residuals.max()) if self.residuals.size else 0.0
+
+    def special(self, kind: str) -> tuple[SpecialPoint, ...]:
+        """Return the special points of one kind, in order along the curve.
+
+        Raises
+        ------
+        ValueError
+            If ``kind`` is not one of ``SPECIAL_KINDS``.
+        """
+        if kind not in SPECIAL_KINDS:
+            raise ValueError(f"kind must be one of {SPECIAL_KINDS}, got {kind!r}")
+        return tuple(point for point in self.special_points if point.kind == kind)
+
+    def point_at(self, s: float) -> np.ndarray:
+        """Return the point of the curve at pseudo-arclength ``s``.
+
+        Parameters
+        ----------
+        s : float
+            ``self.s[0] <= s <= self.s[-1]``.
+
+        Returns
+        -------
+        ndarray, shape (n + 1,)
+            The cubic Hermite prediction between the neighbouring points,
+            corrected by Newton onto the curve in the hyperplane through the
+            prediction normal to the interpolated tangent (``|H| <= tol``).
+
+        Raises
+        ------
+        ValueError
+            If ``s`` is outside the curve or the correction fails.
+        """
+        self._require_problem()
+        if not (self.s.size and self.s[0] <= s <= self.s[-1]):
+            span = f"[{self.s[0]!r}, {self.s[-1]!r}]" if self.s.size else "empty"
+            raise ValueError(f"s must lie in the curve's arclength range {span}, got {s!r}")
+        i = int(np.searchsorted(self.s, s, side="right")) - 1
+        if self.s[i] == s:
+            return self.x[i].copy()
+        h = self.s[i + 1] - self.s[i]
+        point, derivative = hermite(self.x[i], self.tangents[i], self.x[i + 1],
+                                    self.tangents[i + 1], h, s - self.s[i])
+        border = derivative / np.linalg.norm(derivative)
+        return self._correct(point, border, None, f"s={s!r}")
+
+    def point_where(self, coordinate: int, value: float) -> np.ndarray | list[np.ndarray]:
+        """Return the point(s) of the curve where ``x[coordinate] == value``.
+
+        Parameters
+        ----------
+        coordinate : int
+            Index of the coordinate, ``0 <= coordinate <= n``.
+        value : float
+            The value it must take.
+
+        Returns
+        -------
+        ndarray of shape (n + 1,), or list of them
+            One array if the curve crosses the value once, else a list in order
+            of arclength. Each point is corrected onto the curve by Newton with
+            the border equation ``x[coordinate] = value``, not interpolated.
+
+        Raises
+        ------
+        ValueError
+            If the coordinate is out of range, the curve never takes the value,
+            or a correction fails (at a fold in this coordinate).
+        """
+        self._require_problem()
+        n1 = self.x.shape[1] if self.x.ndim == 2 else 0
+        if not (isinstance(coordinate, (int, np.integer)) and 0 <= coordinate < n1):
+            raise ValueError(f"coordinate must be in [0, {n1 - 1}], got {coordinate!r}")
+        column = self.x[:, coordinate] - value
+        border = np.zeros(n1)
+        border[coordinate] = 1.0
+        points = []
+        for i in range(column.size):
+            if column[i] == 0.0:
+                points.append(self.x[i].copy())
+            elif i + 1 < column.size and column[i] * column[i + 1] < 0:
+                h = self.s[i + 1] - self.s[i]
+                sigma = _solve_hermite_coordinate(self, i, coordinate, value, h)
+                point, _ = hermite(self.x[i], self.tangents[i], self.x[i + 1],
+                                   self.tangents[i + 1], h, sigma)
+                points.append(self._correct(point, border, float(value),
+                                            f"{self.problem.coordinate_name(coordinate)}="
+                                            f"{value!r}"))
+        if not points:
+            low, high = (float(column.min() + value), float(column.max() + value)) \
+                if column.size else (math.nan, math.nan)
+            raise ValueError(
+                f"{self.problem.coordinate_name(coordinate)} never equals {value!r} on the "
+                f"curve; it ranges over [{low!r}, {high!r}]"
+            )
+        return points[0] if len(points) == 1 else points
+
+    def _require_problem(self) -> None:
+        if self.problem is None:
+            raise ValueError("dense output needs the curve's problem, but Curve.problem is None")
+
+    def _correct(self, point, border, target, where) -> np.ndarray:
+        options = self.options or Options()
+        result = correct(Evaluator(self.problem), point, border, tol=options.tol,
+                         xtol=options.event_tol, max_newton=options.max_newton,
+                         max_contraction=options.newton_contraction, target=target,
+                         need_tangent=False)
+        if not result.ok:
+            raise ValueError(f"could not correct the point at {where} onto the curve: "
+                             f"{result.reason}")
+        return result.x
+
+
+def _solve_hermite_coordinate(curve: Curve, i: int, coordinate: int, value: float,
+                              h: float) -> float:
+    """Arclength offset where the Hermite arc of step ``i`` has ``x[coordinate] = value``."""
+    low, high = 0.0, h
+    f_low = curve.x[i, coordinate] - value
+    sigma = h * f_low / (f_low - (curve.x[i + 1, coordinate] - value))
+    for _ in range(30):
+        point, derivative = hermite(curve.x[i], curve.tangents[i], curve.x[i + 1],
+                                    curve.tangents[i + 1], h, sigma)
+        f = point[coordinate] - value
+        if f == 0:
+            return sigma
+        if (f < 0) == (f_low < 0):
+            low = sigma
+        else:
+            high = sigma
+        slope = derivative[coordinate]
+        step = sigma - f / slope if slope != 0 else 0.5 * (low + high)
+        sigma = step if low < step < high else 0.5 * (low + high)
+        if high - low < 1e-14 * h:
+            break
+    return sigma

@@ -1,0 +1,568 @@
+"""The predictor-corrector driver: :func:`trace`.
+
+One step is one readable sequence: predict, correct, accept or reject,
+close, locate special points, check termination, adapt the step.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from typing import NamedTuple, Sequence
+
+import numpy as np
+
+from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
+from .events import Event, LocateError, Located, crossed, locate_zero
+from .options import Options
+from .problem import Evaluator, Problem
+from .result import ContinuationError, Curve, SpecialPoint, Status
+
+__all__ = ["trace"]
+
+logger = logging.getLogger(__name__)
+
+#: relative size of the smallest singular value below which a Jacobian is singular
+SINGULAR_RATIO = 1e-8
+
+#: a closing point must lie this close (relative to 1 + max|x0|) to the start
+CLOSE_TOLERANCE = 1e-6
+
+
+class _Point:
+    """An accepted curve point (internal)."""
+
+    __slots__ = ("x", "s", "tangent", "det", "residual", "iterations", "events")
+
+    def __init__(self, x, s, tangent, det, residual, iterations, events):
+        self.x = x
+        self.s = s
+        self.tangent = tangent
+        self.det = det
+        self.residual = residual
+        self.iterations = iterations
+        self.events = events
+
+
+class _Run:
+    """Growing lists of a run and the bookkeeping of special points (internal)."""
+
+    def __init__(self, problem: Problem, options: Options, events: tuple[Event, ...],
+                 evaluator: Evaluator) -> None:
+        self.problem = problem
+        self.options = options
+        self.events = events
+        self.evaluator = evaluator
+        self.x: list[np.ndarray] = []
+        self.s: list[float] = []
+        self.tangents: list[np.ndarray] = []
+        self.iterations: list[int] = []
+        self.residuals: list[float] = []
+        self.special: list[SpecialPoint] = []
+        self.rejected = 0
+
+    def event_values(self, x: np.ndarray) -> list[float]:
+        return [float(event.function(x)) for event in self.events]
+
+    def append(self, x, s, tangent, residual, iterations) -> int:
+        self.x.append(x)
+        self.s.append(s)
+        self.tangents.append(tangent)
+        self.residuals.append(residual)
+        self.iterations.append(iterations)
+        return len(self.s) - 1
+
+    def mark(self, kind, name, index, accuracy, coordinate=None) -> SpecialPoint:
+        point = SpecialPoint(kind=kind, name=name, index=index, x=self.x[index],
+                             s=self.s[index], residual=self.residuals[index],
+                             accuracy=accuracy, coordinate=coordinate,
+                             tangent=self.tangents[index])
+        self.special.append(point)
+        logger.info("%s '%s' at s=%.12g, x=%s (accuracy %.2g)", kind, name, point.s,
+                    self.problem.describe(point.x), accuracy)
+        return point
+
+    def curve(self, status: Status, message: str, n1: int) -> Curve:
+        if self.s:
+            self.mark("end", status.name.lower(), len(self.s) - 1,
+                      self.options.tol)
+        s = np.array(self.s, dtype=float)
+        curve = Curve(
+            x=np.array(self.x, dtype=float).reshape(-1, n1),
+            s=s,
+            tangents=np.array(self.tangents, dtype=float).reshape(-1, n1),
+            ds=np.diff(s, prepend=s[:1]) if s.size else s.copy(),
+            newton_iterations=np.array(self.iterations, dtype=int),
+            special_points=tuple(sorted(self.special, key=lambda p: (p.index, p.s))),
+            status=status,
+            message=message,
+            residual_evals=self.evaluator.residual_evals,
+            jacobian_evals=self.evaluator.jacobian_evals,
+            rejected_steps=self.rejected,
+            residuals=np.array(self.residuals, dtype=float),
+            problem=self.problem,
+            options=self.options,
+        )
+        if status.failed:
+            logger.warning("continuation failed: %s", message)
+            if self.options.raise_on_failure:
+                raise ContinuationError(message, curve)
+        return curve
+
+
+def trace(
+    problem: Problem,
+    x0: np.ndarray,
+    direction: int | np.ndarray | None = None,
+    options: Options | None = None,
+    events: Sequence[Event] = (),
+    tangent: np.ndarray | None = None,
+) -> Curve:
+    """Follow the curve ``H(x) = 0`` from ``x0`` by pseudo-arclength continuation.
+
+    Parameters
+    ----------
+    problem : Problem
+        Residual ``H: R^(n+1) -> R^n`` and (optionally) its Jacobian.
+    x0 : array_like, shape (n + 1,)
+        Start point; it is first corrected onto the curve by Newton in the
+        hyperplane through ``x0`` normal to the initial tangent.
+    direction : {None, 1, -1} or array_like of shape (n + 1,), optional
+        ``None`` or ``+1``: along the tangent induced by the Jacobian,
+        ``det [H'(x0); t^T] > 0`` (or along ``tangent`` if given); ``-1``: the
+        opposite way; an array: the initial tangent has a positive dot product
+        with it.
+    options : Options, optional
+        Tolerances, step sizes and switches (default ``Options()``).
+    events : sequence of Event, optional
+        Scalar functions whose zeros are located (and may stop the curve).
+    tangent : array_like of shape (n + 1,), optional
+        Initial tangent, required at a singular start (e.g. a branch point);
+        it is normalised.
+
+    Returns
+    -------
+    Curve
+        Points, arclength, tangents, special points, status and counters. A
+        failure (``curve.status.failed``) returns the partial curve, or raises
+        :class:`ContinuationError` carrying it if
+        ``options.raise_on_failure``.
+
+    Raises
+    ------
+    ValueError
+        If an argument has the wrong shape or value, or the residual or
+        Jacobian returns arrays of the wrong shape.
+    ContinuationError
+        On failure when ``options.raise_on_failure`` is set.
+
+    Notes
+    -----
+    Predictor: the Euler step ``x + h t`` on the first step, afterwards the
+    quadratic ``x + h t + h^2 c / 2`` with the curvature estimate
+    ``c = (t_k - t_(k-1)) / h_(k-1)``, whose error is ``O(h^3)`` (Allgower &
+    Georg, sec. 6.1 and 7.1). Corrector: Newton on Keller's bordered system
+    with the hyperplane through the prediction normal to the predicted
+    tangent (:func:`continuation.corrector.correct`).
+
+    Step control (Allgower & Georg, sec. 6.1; Den Heijer & Rheinboldt 1981):
+    with the contraction rate ``kappa`` of the first two Newton corrections,
+    the first correction ``delta`` and the angle ``alpha`` between consecutive
+    tangents, compared with half their limits in ``options``,
+
+    .. math::
+
+        f = \\max\\left((\\kappa/\\tilde\\kappa)^{1/p},
+                        (\\delta/\\tilde\\delta)^{1/p}, \\alpha/\\tilde\\alpha\\right),
+        \\qquad h_{new} = h / \\mathrm{clip}(f, 1/2, 2),
+
+    where ``p`` is the order of the predictor error (2 Euler, 3 quadratic).
+    A step exceeding a limit, or whose corrector fails, is rejected and halved.
+
+    Special points in each accepted step ``(x_a, x_b]``: event zeros, folds
+    (sign changes of ``t_i``) and simple branch points (sign changes of
+    ``det [H'; t^T]``, Allgower & Georg, sec. 8.1) are located by
+    :func:`continuation.events.locate_zero` and inserted into the curve.
+    """
+    return _trace(problem, x0, direction, options, events, tangent)
+
+
+def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
+           start_kind=("start", "start", None), at_branch_point=False):
+    """:func:`trace` with a shared evaluator, the start's special-point kind and
+    whether the start is a located branch point (then it is not corrected)."""
+    if not isinstance(problem, Problem):
+        raise TypeError(f"problem must be a Problem, got {type(problem).__name__}")
+    options = Options() if options is None else options
+    if not isinstance(options, Options):
+        raise TypeError(f"options must be an Options, got {type(options).__name__}")
+    events = tuple(events)
+    for event in events:
+        if not isinstance(event, Event):
+            raise TypeError(f"events must be Event instances, got {type(event).__name__}")
+    x0 = _as_vector("x0", x0)
+    n1 = x0.size
+    if n1 < 2:
+        raise ValueError(f"x0 must have n + 1 >= 2 coordinates, got {n1}")
+    if problem.names is not None and len(problem.names) != n1:
+        raise ValueError(f"Problem.names has {len(problem.names)} names, x0 has {n1} coordinates")
+    for i in options.fold_coordinates:
+        if i >= n1:
+            raise ValueError(f"Options.fold_coordinates entries must be < {n1}, got {i}")
+    evaluator = Evaluator(problem) if evaluator is None else evaluator
+    run = _Run(problem, options, events, evaluator)
+
+    start, status, message = _start(run, x0, direction, tangent, at_branch_point)
+    if start is None:
+        return run.curve(status, message, n1)
+    index = run.append(start.x, 0.0, start.tangent, start.residual, start.iterations)
+    run.mark(start_kind[0], start_kind[1], index, start_kind[2] or 0.0)
+
+    point = start
+    ds = options.ds
+    curvature = None
+    steps = 0
+    failure = ""
+    status = None
+    while status is None:
+        if steps >= options.max_steps:
+            status, message = Status.MAX_STEPS, f"{Status.MAX_STEPS.value} ({steps})"
+            break
+        h = min(ds, options.max_arclength - point.s)
+
+        # predict
+        if curvature is None:
+            x_pred = point.x + h * point.tangent
+            border = point.tangent
+            order = 2
+        else:
+            x_pred = point.x + h * point.tangent + (0.5 * h * h) * curvature
+            border = point.tangent + h * curvature
+            border = border / math.sqrt(float(border @ border))
+            order = 3
+
+        # correct
+        correction = correct(evaluator, x_pred, border, tol=options.tol, xtol=options.tol,
+                             max_newton=options.max_newton,
+                             max_contraction=options.newton_contraction,
+                             max_correction=options.max_correction)
+        alpha = 0.0
+        if correction.ok:
+            cosine = float(correction.tangent @ point.tangent)
+            alpha = math.acos(max(-1.0, min(1.0, cosine)))
+            if alpha > options.max_angle:
+                correction.ok = False
+                correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
+
+        # reject
+        if not correction.ok:
+            run.rejected += 1
+            failure = correction.reason
+            logger.debug("step %d rejected at s=%.6g with ds=%.3g: %s", steps + 1, point.s, h,
+                         failure)
+            ds = 0.5 * h
+            if ds < options.ds_min:
+                status, message = _step_failure(run, point, steps, failure, ds)
+            continue
+
+        # accept
+        steps += 1
+        length = _arc_length(correction.x - point.x, alpha)
+        new = _Point(correction.x, point.s + length, correction.tangent, correction.det,
+                     correction.residual, correction.iterations,
+                     run.event_values(correction.x))
+        new_curvature = (new.tangent - point.tangent) / length
+        truncated = h >= options.max_arclength - point.s
+        if truncated and new.s != options.max_arclength:
+            new = _point_at_arclength(run, point, new, options.max_arclength)
+        closing = _closing_point(run, start, point, new) if options.detect_closed else None
+        if closing is not None:
+            new = closing
+        terminal = _add_step(run, point, new)
+        if terminal is not None:
+            status, message = Status.TERMINAL_EVENT, (
+                f"terminal event '{terminal.name}' at s={terminal.s:.12g}, "
+                f"x={problem.describe(terminal.x)}")
+        elif closing is not None:
+            run.mark("closed", "closed", len(run.s) - 1, 0.0)
+            status, message = Status.CLOSED, (
+                f"{Status.CLOSED.value} after {steps} steps, length s={new.s:.12g}")
+        elif truncated:
+            status, message = Status.MAX_ARCLENGTH, f"{Status.MAX_ARCLENGTH.value} s={new.s:.12g}"
+
+        # adapt
+        ds = min(options.ds_max, h * _step_multiplier(correction, alpha, order, options))
+        ds = max(ds, options.ds_min)
+        point = new
+        curvature = new_curvature
+    return run.curve(status, message, n1)
+
+
+def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
+    """Correct ``x0`` onto the curve and orient its tangent; ``(point, status, message)``."""
+    problem, options, evaluator = run.problem, run.options, run.evaluator
+    n1 = x0.size
+    H = evaluator.residual(x0)
+    if H.shape != (n1 - 1,):
+        raise ValueError(f"residual(x0) has shape {H.shape}, expected ({n1 - 1},) for x0 of "
+                         f"shape ({n1},)")
+    where = f"x0={problem.describe(x0)}"
+    if not np.isfinite(H).all():
+        return None, Status.NON_FINITE, f"the residual is not finite at the start {where}"
+    J = evaluator.jacobian(x0)
+    if J.shape != (n1 - 1, n1):
+        raise ValueError(f"jacobian(x0) has shape {J.shape}, expected ({n1 - 1}, {n1})")
+    if not np.isfinite(J).all():
+        return None, Status.NON_FINITE, f"the Jacobian is not finite at the start {where}"
+    reference = None
+    if direction is not None and not isinstance(direction, (int, np.integer)):
+        reference = _as_vector("direction", direction)
+        if reference.size != n1 or not np.any(reference):
+            raise ValueError(f"direction must be None, 1, -1 or a nonzero array of shape "
+                             f"({n1},), got {direction!r}")
+        sign = 1
+    else:
+        if direction not in (None, 1, -1):
+            raise ValueError(f"direction must be None, 1, -1 or an array of shape ({n1},), "
+                             f"got {direction!r}")
+        sign = 1 if direction is None else int(direction)
+
+    if tangent is None:
+        singular_values, basis = _svd(J)
+        if singular_values[0] == 0 or singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
+            ratio = singular_values[-1] / singular_values[0] if singular_values[0] else 0.0
+            return None, Status.SINGULAR_START, (
+                f"the Jacobian has rank < n at the start {where} (smallest/largest singular "
+                f"value {ratio:.2e}): the start is a branch point or another singular point; "
+                "use switch_branch(problem, x0, ...) or pass an explicit tangent=")
+        guess = basis[-1]
+    else:
+        guess = _as_vector("tangent", tangent)
+        norm = float(np.linalg.norm(guess))
+        if guess.size != n1 or not norm > 0:
+            raise ValueError(f"tangent must be a nonzero finite array of shape ({n1},), "
+                             f"got {tangent!r}")
+        guess = guess / norm
+
+    if at_branch_point and tangent is not None and float(np.max(np.abs(H))) <= options.tol:
+        # the bordered matrix is singular at a branch point: keep the located point
+        correction = Correction(False, SINGULAR, x0, None, 0.0, float(np.max(np.abs(H))), 0,
+                                0.0, 0.0)
+    else:
+        correction = correct(evaluator, x0, guess, tol=options.tol, xtol=options.tol,
+                             max_newton=options.max_newton,
+                             max_contraction=options.newton_contraction,
+                             residual=H, jacobian=J)
+    if correction.ok:
+        x, t, det = correction.x, correction.tangent, correction.det
+        if reference is None and tangent is None and det < 0:
+            sign = -sign
+    elif (tangent is not None and correction.reason == SINGULAR
+          and float(np.max(np.abs(H))) <= options.tol):
+        # a singular start on the curve with a given tangent (a branch point)
+        x, t, det = x0, guess, 0.0
+        correction.residual = float(np.max(np.abs(H)))
+        correction.iterations = 0
+    elif correction.reason == NON_FINITE:
+        return None, Status.NON_FINITE, (
+            f"the residual or Jacobian became non-finite while correcting the start {where}; "
+            "give a start closer to the curve, inside the residual's domain")
+    else:
+        return None, Status.START_NOT_CONVERGED, (
+            f"Newton did not converge from the start {where}, |H(x0)|="
+            f"{float(np.max(np.abs(H))):.3g}: {correction.reason} after "
+            f"{correction.iterations} iterations (last |H|={correction.residual:.3g}, "
+            f"last x={problem.describe(correction.x)}); give a start closer to the curve, "
+            "or raise Options.max_newton / loosen Options.tol")
+    if reference is not None:
+        dot = float(t @ reference)
+        if dot == 0:
+            raise ValueError("direction is orthogonal to the tangent at the start; "
+                             "it cannot choose an orientation")
+        sign = 1 if dot > 0 else -1
+    point = _Point(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations,
+                   run.event_values(x))
+    return point, None, ""
+
+
+def _svd(J: np.ndarray):
+    """Singular values of ``J`` and the full right singular basis (rows)."""
+    _, singular_values, basis = np.linalg.svd(J, full_matrices=True)
+    return singular_values, basis
+
+
+def _as_vector(name: str, value) -> np.ndarray:
+    array = np.array(value, dtype=float)
+    if array.ndim != 1 or not np.isfinite(array).all():
+        raise ValueError(f"{name} must be a finite 1-D array, got {value!r}")
+    return array
+
+
+def _arc_length(chord: np.ndarray, alpha: float) -> float:
+    """Arclength of a step from its chord and the angle between its end tangents.
+
+    ``|chord| (alpha / 2) / sin(alpha / 2)``: exact on a circular arc, with an
+    error ``O(h^5)`` on a smooth curve; the pseudo-arclength ``h`` itself is
+    off by ``O(h^3)``.
+    """
+    length = math.sqrt(float(chord @ chord))
+    half = 0.5 * alpha
+    return length * half / math.sin(half) if half > 1e-8 else length
+
+
+def _step_multiplier(correction, alpha: float, order: int, options: Options) -> float:
+    """Step-size factor ``1 / clip(f, 1/2, 2)`` from Allgower & Georg's sec. 6.1 estimates."""
+    f = max(
+        (correction.contraction / (0.5 * options.newton_contraction)) ** (1.0 / order),
+        (correction.first_correction / (0.5 * options.max_correction)) ** (1.0 / order),
+        alpha / (0.5 * options.max_angle),
+    )
+    return 2.0 if f <= 0.5 else max(0.5, 1.0 / f)
+
+
+def _step_failure(run: _Run, point: _Point, steps: int, reason: str, ds: float):
+    """Status and message when the step falls below ``ds_min``."""
+    where = (f"after step {steps} at s={point.s:.12g}, x={run.problem.describe(point.x)} "
+             f"(step size {ds:.3g} < ds_min={run.options.ds_min:.3g})")
+    if reason == NON_FINITE:
+        return Status.NON_FINITE, (
+            f"the residual or Jacobian is not finite ahead of the curve {where}: the curve "
+            "leaves the residual's domain; stop it before with box_events or an Event, or "
+            "extend the residual")
+    return Status.STEP_TOO_SMALL, (
+        f"{Status.STEP_TOO_SMALL.value} {where}; last rejection: {reason}. The curve may end, "
+        "turn sharply or be singular here: check the residual and Jacobian near this point, "
+        "loosen Options.tol, or lower Options.ds_min")
+
+
+def _point_at_arclength(run: _Run, a: _Point, b: _Point, s: float) -> _Point:
+    """The curve point at arclength ``s`` near the step ``a -> b`` (else ``b``).
+
+    The step was sized in pseudo-arclength, whose sum differs from the
+    arclength by ``O(h^3)``; the Hermite arc of the step, extended slightly if
+    needed, is corrected at ``s`` so that the curve ends exactly there.
+    """
+    options = run.options
+    p, dp = hermite(a.x, a.tangent, b.x, b.tangent, b.s - a.s, s - a.s)
+    correction = correct(run.evaluator, p, dp / np.linalg.norm(dp), tol=options.tol,
+                         xtol=options.tol, max_newton=options.max_newton,
+                         max_contraction=options.newton_contraction)
+    if not correction.ok:
+        logger.debug("could not move the last point to s=%.12g: %s", s, correction.reason)
+        return b
+    return _Point(correction.x, s, correction.tangent, correction.det, correction.residual,
+                  correction.iterations, run.event_values(correction.x))
+
+
+def _closing_point(run: _Run, start: _Point, a: _Point, b: _Point) -> _Point | None:
+    """The start point, if the step ``a -> b`` passes through it with the same tangent.
+
+    The step must cross the hyperplane through the start normal to its tangent
+    in the positive direction; the curve point in that hyperplane, corrected
+    from the Hermite arc, must then coincide with the start.
+    """
+    t0, x0 = start.tangent, start.x
+    g_a = float(t0 @ (a.x - x0))
+    g_b = float(t0 @ (b.x - x0))
+    if not (g_a < 0.0 <= g_b) or float(t0 @ a.tangent) <= 0.0:
+        return None
+    chord = b.x - a.x
+    tau = g_a / (g_a - g_b)
+    if np.linalg.norm(a.x + tau * chord - x0) > np.linalg.norm(chord):
+        return None
+    h = b.s - a.s
+    sigma = tau * h
+    for _ in range(5):
+        p, dp = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
+        slope = float(t0 @ dp)
+        if slope <= 0:
+            break
+        sigma = min(h, max(0.0, sigma - float(t0 @ (p - x0)) / slope))
+    p, _ = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
+    p = p - t0 * float(t0 @ (p - x0))
+    options = run.options
+    correction = correct(run.evaluator, p, t0, tol=options.tol, xtol=options.tol,
+                         max_newton=options.max_newton,
+                         max_contraction=options.newton_contraction, need_tangent=False)
+    scale = CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
+    if not correction.ok or float(np.max(np.abs(correction.x - x0))) > scale:
+        return None
+    angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
+    return _Point(x0.copy(), a.s + _arc_length(x0 - a.x, angle), start.tangent, start.det,
+                  start.residual, correction.iterations, start.events)
+
+
+class _Found(NamedTuple):
+    located: Located
+    kind: str
+    name: str
+    coordinate: int | None
+    terminal: bool
+
+
+def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
+    """Locate the special points of step ``(a, b]`` and append them and ``b``.
+
+    Returns the terminal event that ends the curve, if any; the curve then
+    ends at that event point and the rest of the step is dropped.
+    """
+    options = run.options
+    found: list[_Found] = []
+
+    def locate(function, f_a, f_b, need_tangent, kind, name, coordinate=None,
+               terminal=False):
+        try:
+            located = locate_zero(run.evaluator, options, function, a, b, f_a, f_b,
+                                  need_tangent)
+        except LocateError as error:
+            logger.warning("could not locate %s '%s' between s=%.12g and s=%.12g (%s); "
+                           "reported at the step's end with accuracy %.3g", kind, name, a.s,
+                           b.s, error, b.s - a.s)
+            located = Located(b.s, None, b.s - a.s, "end")
+        found.append(_Found(located, kind, name, coordinate, terminal))
+
+    for j, event in enumerate(run.events):
+        if crossed(a.events[j], b.events[j], event.direction):
+            locate(lambda c, f=event.function: f(c.x), a.events[j], b.events[j], False,
+                   "event", event.name, terminal=event.terminal)
+    for i in options.fold_coordinates:
+        if crossed(float(a.tangent[i]), float(b.tangent[i])):
+            locate(lambda c, i=i: c.tangent[i], float(a.tangent[i]), float(b.tangent[i]),
+                   True, "fold", f"fold {run.problem.coordinate_name(i)}", coordinate=i)
+    if options.detect_branch_points and crossed(a.det, b.det):
+        # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
+        # the accepted ends, and smooth through the branch point where t is not
+        locate(lambda c: c.border_det, a.det, b.det, True, "branch_point", "branch point")
+
+    found.sort(key=lambda item: item.located.s)
+    first_terminal = next((item for item in found if item.terminal), None)
+    if first_terminal is not None:
+        found = [item for item in found if item.located.s <= first_terminal.located.s]
+
+    a_index = len(run.s) - 1
+    b_index = None
+    terminal = None
+    previous_s = a.s
+    for item in found:
+        located = item.located
+        if located.endpoint == "start":
+            index = a_index
+        elif located.endpoint == "end":
+            if b_index is None:
+                b_index = run.append(b.x, b.s, b.tangent, b.residual, b.iterations)
+            index = b_index
+        elif located.s == previous_s:
+            index = len(run.s) - 1
+        else:
+            c = located.correction
+            # the root finder's variable is the Hermite parameter; report arclength
+            angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
+            s = min(b.s, a.s + _arc_length(c.x - a.x, angle))
+            index = run.append(c.x, max(s, run.s[-1]), c.tangent, c.residual, c.iterations)
+        previous_s = located.s
+        special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate)
+        if item is first_terminal:
+            terminal = special
+    if terminal is None and b_index is None:
+        run.append(b.x, b.s, b.tangent, b.residual, b.iterations)
+    return terminal

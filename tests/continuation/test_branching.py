@@ -1,0 +1,110 @@
+"""Branch points: located on a branch, tangents from the bifurcation equation, switching."""
+
+import numpy as np
+import pytest
+
+from continuation import (Options, SpecialPoint, Status, branch_tangents, locate_branch_point,
+                          switch_branch, trace)
+
+OPTIONS = Options(max_arclength=2.0)
+
+
+@pytest.fixture
+def trivial_branch(pitchfork):
+    return trace(pitchfork, [-1.0, 0.0], direction=[1.0, 0.0], options=OPTIONS)
+
+
+def test_branch_point_located_on_the_trivial_branch(trivial_branch):
+    (point,) = trivial_branch.special("branch_point")
+    assert np.max(np.abs(point.x)) <= 1e-10
+    assert point.s == pytest.approx(1.0, abs=1e-10)
+    assert point.accuracy <= 1e-11
+    assert np.allclose(np.abs(point.tangent), [1.0, 0.0])
+
+
+def test_no_branch_point_reported_at_folds(cubic):
+    curve = trace(cubic, [-6.0, -2.0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0,), max_arclength=16.0))
+    assert len(curve.special("fold")) == 2
+    assert curve.special("branch_point") == ()
+
+
+def test_branch_tangents_of_the_pitchfork(pitchfork):
+    tangents = branch_tangents(pitchfork, [0.0, 0.0])
+    directions = sorted(tuple(np.round(np.abs(t), 12)) for t in tangents)
+    assert directions == [(0.0, 1.0), (1.0, 0.0)]
+
+
+def test_branch_tangents_of_the_transcritical(transcritical):
+    tangents = branch_tangents(transcritical, [0.0, 0.0])
+    products = sorted(abs(t[0] * t[1]) for t in tangents)
+    assert products == pytest.approx([0.0, 0.5], abs=1e-9)
+
+
+def test_branch_tangents_reject_a_regular_point(pitchfork):
+    with pytest.raises(ValueError, match="is not a branch point"):
+        branch_tangents(pitchfork, [1.0, 1.0])
+
+
+@pytest.mark.parametrize("direction, sign", [(1, 1.0), (-1, -1.0)])
+def test_switch_branch_follows_the_pitchfork_both_ways(pitchfork, trivial_branch, direction,
+                                                       sign):
+    (point,) = trivial_branch.special("branch_point")
+    curve = switch_branch(pitchfork, point, direction=direction, options=OPTIONS)
+    assert curve.status is Status.MAX_ARCLENGTH, curve.message
+    assert curve.special_points[0].kind == "branch_point"
+    assert curve.special_points[0].index == 0
+    assert np.array_equal(curve.x[0], point.x)
+    assert np.all(curve.x[1:, 1] * sign > 0)
+    residuals = np.abs(curve.x[:, 1] * (curve.x[:, 0] - curve.x[:, 1] ** 2))
+    assert np.all(residuals <= OPTIONS.tol)
+    assert np.max(np.abs(curve.x[1:, 0] - curve.x[1:, 1] ** 2)) <= 1e-9
+    assert curve.s[-1] == 2.0
+    # no spurious branch point right after the start
+    assert curve.special("branch_point") == (curve.special_points[0],)
+
+
+def test_switch_branch_with_a_direction_array(pitchfork, trivial_branch):
+    (point,) = trivial_branch.special("branch_point")
+    curve = switch_branch(pitchfork, point, direction=[0.0, -1.0], options=OPTIONS)
+    assert np.all(curve.x[1:, 1] < 0)
+
+
+def test_switch_branch_from_an_approximate_point(pitchfork):
+    curve = switch_branch(pitchfork, [0.01, 0.003], direction=1, options=OPTIONS)
+    assert np.max(np.abs(curve.x[0])) <= 1e-10
+    assert np.all(curve.x[1:, 1] > 0)
+    assert np.max(np.abs(curve.x[1:, 0] - curve.x[1:, 1] ** 2)) <= 1e-9
+    # the location and the tangents are counted
+    assert curve.jacobian_evals > len(curve)
+
+
+def test_switch_branch_from_the_exact_singular_point(pitchfork):
+    point = locate_branch_point(pitchfork, [0.0, 0.0])
+    assert np.max(np.abs(point.x)) <= 1e-10
+    # from the singular point itself the current branch must be named
+    curve = switch_branch(pitchfork, point, direction=-1, options=OPTIONS,
+                          tangent_hint=[1.0, 0.0])
+    assert np.all(curve.x[1:, 1] < 0)
+    assert np.max(np.abs(curve.x[1:, 0] - curve.x[1:, 1] ** 2)) <= 1e-9
+
+
+def test_switch_branch_on_the_transcritical(transcritical):
+    trivial = trace(transcritical, [-1.0, 0.0], direction=[1.0, 0.0], options=OPTIONS)
+    (point,) = trivial.special("branch_point")
+    assert np.max(np.abs(point.x)) <= 1e-10
+    for direction in (1, -1):
+        curve = switch_branch(transcritical, point, direction=direction, options=OPTIONS)
+        assert np.max(np.abs(curve.x[:, 1] - curve.x[:, 0])) <= 1e-9
+        assert np.all(np.sign(curve.x[1:, 0]) == direction)
+
+
+def test_switch_branch_needs_to_know_the_current_branch(pitchfork):
+    point = SpecialPoint("branch_point", "branch point", 0, np.zeros(2), 0.0, 0.0, 0.0)
+    with pytest.raises(ValueError, match="cannot tell the new branch"):
+        switch_branch(pitchfork, point, options=OPTIONS)
+
+
+def test_no_branch_point_nearby(circle):
+    with pytest.raises(ValueError, match="no branch point found"):
+        locate_branch_point(circle, [1.0, 0.1])

@@ -1,0 +1,102 @@
+"""Failure paths: a documented status with a message and the partial curve, or an exception."""
+
+import numpy as np
+import pytest
+
+from continuation import ContinuationError, Options, Problem, Status, trace
+
+
+def parabola_with_a_wall():
+    def residual(x):
+        if x[0] > 0.5:
+            return np.array([np.nan])
+        return np.array([x[1] - x[0] ** 2])
+
+    return Problem(residual, lambda x: np.array([[-2.0 * x[0], 1.0]]))
+
+
+def test_non_finite_residual_mid_curve_keeps_the_partial_curve():
+    curve = trace(parabola_with_a_wall(), [-1.0, 1.0], direction=[1.0, 0.0])
+    assert curve.status is Status.NON_FINITE
+    assert curve.status.failed and not curve.ok
+    assert "ds_min" in curve.message and "x[0]=0.5" in curve.message
+    assert "box_events" in curve.message
+    assert len(curve) > 5
+    assert np.all(curve.x[:, 0] <= 0.5)
+    assert curve.x[-1, 0] == pytest.approx(0.5, abs=1e-9)
+    assert np.all(np.abs(curve.x[:, 1] - curve.x[:, 0] ** 2) <= 1e-10)
+    assert curve.special_points[-1].kind == "end"
+    assert curve.special_points[-1].name == "non_finite"
+
+
+def test_raise_on_failure_carries_the_partial_curve():
+    with pytest.raises(ContinuationError, match="not finite ahead of the curve") as info:
+        trace(parabola_with_a_wall(), [-1.0, 1.0], direction=[1.0, 0.0],
+              options=Options(raise_on_failure=True))
+    curve = info.value.curve
+    assert curve.status is Status.NON_FINITE
+    assert len(curve) > 5 and np.all(curve.x[:, 0] <= 0.5)
+
+
+def test_start_far_from_the_curve(circle):
+    curve = trace(circle, [1e3, 1e3])
+    assert curve.status is Status.START_NOT_CONVERGED
+    assert curve.status.failed
+    assert "x0=(x[0]=1000, x[1]=1000)" in curve.message
+    assert "closer to the curve" in curve.message
+    assert len(curve) == 0 and curve.x.shape == (0, 2)
+    with pytest.raises(ContinuationError, match="Newton did not converge"):
+        trace(circle, [1e3, 1e3], options=Options(raise_on_failure=True))
+
+
+def test_singular_start_without_tangent(pitchfork):
+    curve = trace(pitchfork, [0.0, 0.0])
+    assert curve.status is Status.SINGULAR_START
+    assert "switch_branch" in curve.message
+    assert len(curve) == 0
+
+
+def test_singular_start_with_tangent_is_followed(pitchfork):
+    curve = trace(pitchfork, [0.0, 0.0], tangent=[1.0, 0.0],
+                  options=Options(max_arclength=1.0))
+    assert curve.status is Status.MAX_ARCLENGTH
+    assert np.allclose(curve.x[-1], [1.0, 0.0], atol=1e-10)
+
+
+def test_start_with_non_finite_residual(circle):
+    problem = Problem(lambda x: np.array([np.inf]))
+    assert trace(problem, [0.0, 0.0]).status is Status.NON_FINITE
+
+
+def test_step_too_small_names_where_and_what_to_change():
+    # the curve u = |lambda|^(1/2) ... has a cusp-like corner: H = u^2 - lambda^2 (cross at 0)
+    # with branch point detection off, the corner at lambda = 0 of u = sqrt(lambda^2 + 1e-30)
+    # is a kink the corrector cannot pass with a smooth tangent
+    problem = Problem(lambda x: np.array([x[1] - np.sqrt(x[0] ** 2 + 1e-24)]),
+                      lambda x: np.array([[-x[0] / np.sqrt(x[0] ** 2 + 1e-24), 1.0]]))
+    curve = trace(problem, [-1.0, 1.0], direction=[1.0, 0.0],
+                  options=Options(ds_min=1e-6, max_arclength=4.0))
+    assert curve.status is Status.STEP_TOO_SMALL, curve.message
+    assert "after step" in curve.message and "s=" in curve.message
+    assert "ds_min" in curve.message
+    assert curve.x[-1, 0] < 0.0 < curve.x[-1, 0] + 1e-3
+    assert curve.rejected_steps > 0
+
+
+def test_max_steps_is_a_normal_end(circle):
+    curve = trace(circle, [1.0, 0.0], options=Options(max_steps=3))
+    assert curve.status is Status.MAX_STEPS and curve.ok
+    assert len(curve) == 4
+
+
+def test_argument_validation(circle):
+    with pytest.raises(ValueError, match="direction must be None, 1, -1"):
+        trace(circle, [1.0, 0.0], direction=2)
+    with pytest.raises(ValueError, match="x0 must be a finite 1-D array"):
+        trace(circle, [[1.0, 0.0]])
+    with pytest.raises(ValueError, match=r"residual\(x0\) has shape \(2,\), expected \(1,\)"):
+        trace(Problem(lambda x: x), [1.0, 0.0])
+    with pytest.raises(ValueError, match="fold_coordinates entries must be < 2, got 5"):
+        trace(circle, [1.0, 0.0], options=Options(fold_coordinates=(5,)))
+    with pytest.raises(ValueError, match="direction is orthogonal"):
+        trace(circle, [1.0, 0.0], direction=[1.0, 0.0])
