@@ -24,20 +24,20 @@ from .result import ContinuationError, Curve, SpecialPoint, Status
 from .tracker import trace
 
 __all__ = [
-    "Problem",
-    "Options",
-    "Event",
-    "box_events",
-    "trace",
-    "switch_branch",
-    "branch_tangents",
-    "locate_branch_point",
+    "ContinuationError",
     "Curve",
+    "Event",
+    "Options",
+    "Problem",
     "SpecialPoint",
     "Status",
-    "ContinuationError",
-    "finite_difference_jacobian",
+    "box_events",
+    "branch_tangents",
     "check_jacobian",
+    "finite_difference_jacobian",
+    "locate_branch_point",
+    "switch_branch",
+    "trace",
 ]
 
 import logging as _logging

@@ -14,7 +14,7 @@ from scipy.linalg.lapack import dgetrf, dgetrs
 
 from .problem import Evaluator
 
-__all__ = ["Correction", "correct", "tangent_at", "hermite"]
+__all__ = ["Correction", "correct", "hermite", "tangent_at"]
 
 #: reasons a correction fails, used in log and status messages
 NON_FINITE = "non-finite residual or Jacobian"
@@ -54,8 +54,18 @@ class Correction:
         branch point it vanishes).
     """
 
-    __slots__ = ("ok", "reason", "x", "tangent", "det", "residual", "iterations",
-                 "first_correction", "contraction", "border_det")
+    __slots__ = (
+        "border_det",
+        "contraction",
+        "det",
+        "first_correction",
+        "iterations",
+        "ok",
+        "reason",
+        "residual",
+        "tangent",
+        "x",
+    )
 
     def __init__(self, ok, reason, x, tangent, det, residual, iterations,
                  first_correction, contraction, border_det=0.0):
@@ -85,9 +95,12 @@ def _factor(jacobian: np.ndarray, border: np.ndarray):
 
 def _signed_det(lu: np.ndarray, piv: np.ndarray) -> float:
     """Determinant from an LU factorisation ``P A = L U`` (LAPACK pivots)."""
-    swaps = int(np.count_nonzero(piv != np.arange(piv.size)))
-    det = float(np.prod(lu.diagonal()))
-    return -det if swaps % 2 else det
+    det = 1.0
+    swaps = 0
+    for i in range(piv.size):
+        det *= lu[i, i]
+        swaps += piv[i] != i
+    return float(-det if swaps % 2 else det)
 
 
 def correct(
@@ -179,7 +192,7 @@ def correct(
     previous = math.inf
     factors = None
     for k in range(max_newton + 1):
-        rnorm = float(np.max(np.abs(H))) if H.size else 0.0
+        rnorm = float(np.abs(H).max()) if H.size else 0.0
         if not rnorm < math.inf or (J is not None and not np.isfinite(J).all()):
             return Correction(False, NON_FINITE, x, None, 0.0, math.inf, k, first, contraction)
         if J is None:
@@ -189,8 +202,8 @@ def correct(
             rhs[: n1 - 1, 0] = -H
             rhs[n1 - 1, 0] = target - float(border @ x)
             solution, _ = dgetrs(factors[0], factors[1], rhs)
-            estimate = float(np.max(np.abs(solution[:, 0])))
-            if rnorm <= tol and estimate <= xtol * (1.0 + float(np.max(np.abs(x)))):
+            estimate = float(np.abs(solution[:, 0]).max())
+            if rnorm <= tol and estimate <= xtol * (1.0 + float(np.abs(x).max())):
                 contraction = contraction or estimate / max(first, 1e-300)
                 return Correction(True, "", x, None, 0.0, rnorm, k, first, contraction)
             J = evaluator.jacobian(x)
@@ -203,12 +216,12 @@ def correct(
         rhs[n1 - 1, 0] = target - float(border @ x)
         solution, _ = dgetrs(factors[0], factors[1], rhs)
         dx = solution[:, 0]
-        dnorm = float(np.max(np.abs(dx)))
+        dnorm = float(np.abs(dx).max())
         if not dnorm < math.inf:
             return Correction(False, SINGULAR, x, None, 0.0, rnorm, k, first, contraction)
-        small = dnorm <= xtol * (1.0 + float(np.max(np.abs(x))))
+        small = dnorm <= xtol * (1.0 + float(np.abs(x).max()))
         if k == 0:
-            first = float(np.linalg.norm(dx))
+            first = math.sqrt(float(dx @ dx))
             if first > max_correction:
                 return Correction(False, TOO_FAR, x, None, 0.0, rnorm, k, first, contraction)
         elif k == 1:
@@ -218,7 +231,7 @@ def correct(
                               dnorm / max(previous, 1e-300))
         if rnorm <= tol and small:
             v = solution[:, 1]
-            vnorm = float(np.linalg.norm(v))
+            vnorm = math.sqrt(float(v @ v))
             border_det = _signed_det(*factors)
             return Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
                               contraction, border_det)

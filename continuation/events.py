@@ -11,8 +11,8 @@ from __future__ import annotations
 import logging
 import math
 import numbers
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from .corrector import Correction, correct, hermite, tangent_at
 from .options import Options
 from .problem import Evaluator
 
-__all__ = ["Event", "box_events", "crossed", "locate_zero", "Located", "LocateError"]
+__all__ = ["Event", "LocateError", "Located", "box_events", "crossed", "locate_zero"]
 
 logger = logging.getLogger(__name__)
 
@@ -63,14 +63,16 @@ class Event:
     terminal: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
+        if not isinstance(self.name, str):
+            raise TypeError(f"Event.name must be a non-empty str, got {self.name!r}")
+        if not self.name:
             raise ValueError(f"Event.name must be a non-empty str, got {self.name!r}")
         if not callable(self.function):
             raise TypeError(f"Event.function must be callable, got {self.function!r}")
         if self.direction not in (-1, 0, 1) or isinstance(self.direction, bool):
             raise ValueError(f"Event.direction must be -1, 0 or 1, got {self.direction!r}")
         if not isinstance(self.terminal, bool):
-            raise ValueError(f"Event.terminal must be True or False, got {self.terminal!r}")
+            raise TypeError(f"Event.terminal must be True or False, got {self.terminal!r}")
 
 
 def box_events(
@@ -173,7 +175,7 @@ class LocateError(RuntimeError):
 class Located:
     """A located zero (internal): the corrected point and the bracket width."""
 
-    __slots__ = ("s", "correction", "accuracy", "endpoint")
+    __slots__ = ("accuracy", "correction", "endpoint", "s")
 
     def __init__(self, s: float, correction: Correction | None, accuracy: float,
                  endpoint: str | None) -> None:

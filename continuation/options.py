@@ -26,7 +26,7 @@ class Options:
     max_steps : int
         Maximum number of accepted steps (a normal end, ``Status.MAX_STEPS``).
     max_arclength : float
-        The run stops exactly at this pseudo-arclength (``Status.MAX_ARCLENGTH``).
+        The run stops exactly at this arclength (``Status.MAX_ARCLENGTH``).
     max_newton : int
         Maximum Newton iterations per corrector call.
     newton_contraction : float
@@ -40,9 +40,10 @@ class Options:
         Largest accepted length (2-norm) of the first Newton correction; half
         of it is the nominal distance of the step-size control.
     event_tol : float
-        Width in pseudo-arclength of the final bracket of every located special
+        Width in arclength of the final root bracket of every located special
         point (events, folds, branch points); trial points are corrected to
-        ``max |dx| <= event_tol (1 + max |x|)``.
+        ``max |dx| <= event_tol (1 + max |x|)``, so the located point is within
+        about ``event_tol`` of the exact one in ``x``.
     fold_coordinates : tuple of int
         Coordinates ``i`` with respect to which folds (sign changes of the
         tangent component ``t_i``) are detected and located.
@@ -60,6 +61,8 @@ class Options:
     ValueError
         If a value is out of its range; the message names the field, its value
         and the allowed range.
+    TypeError
+        If a switch is not a bool or a fold coordinate not an integer.
 
     Notes
     -----
@@ -114,15 +117,15 @@ class Options:
             raise ValueError(
                 f"Options.max_angle must be in (0, pi/2] radians, got {self.max_angle!r}"
             )
+        message = ("Options.fold_coordinates must be a tuple of coordinate indices >= 0, got "
+                   f"{self.fold_coordinates!r}")
         try:
             folds = tuple(self.fold_coordinates)
         except TypeError:
-            raise ValueError(
-                "Options.fold_coordinates must be a tuple of coordinate indices >= 0, got "
-                f"{self.fold_coordinates!r}"
-            ) from None
-        if not all(isinstance(i, numbers.Integral) and not isinstance(i, bool) and i >= 0
-                   for i in folds):
+            raise TypeError(message) from None
+        if not all(isinstance(i, numbers.Integral) and not isinstance(i, bool) for i in folds):
+            raise TypeError(message)
+        if not all(i >= 0 for i in folds):
             raise ValueError(
                 "Options.fold_coordinates must be a tuple of coordinate indices >= 0, got "
                 f"{self.fold_coordinates!r}"
@@ -130,7 +133,7 @@ class Options:
         object.__setattr__(self, "fold_coordinates", tuple(int(i) for i in folds))
         for name in ("detect_branch_points", "detect_closed", "raise_on_failure"):
             if not isinstance(getattr(self, name), bool):
-                raise ValueError(
+                raise TypeError(
                     f"Options.{name} must be True or False, got {getattr(self, name)!r}"
                 )
 

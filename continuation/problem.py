@@ -7,12 +7,12 @@ No coordinate is privileged (Allgower & Georg's formulation): the curve
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
-__all__ = ["Problem", "finite_difference_jacobian", "check_jacobian"]
+__all__ = ["Problem", "check_jacobian", "finite_difference_jacobian"]
 
 logger = logging.getLogger(__name__)
 
@@ -220,7 +220,7 @@ class Evaluator:
     ``jacobian_evals`` counts Jacobians (supplied or finite-difference).
     """
 
-    __slots__ = ("problem", "residual_evals", "jacobian_evals", "_residual", "_jacobian")
+    __slots__ = ("_jacobian", "_residual", "jacobian_evals", "problem", "residual_evals")
 
     def __init__(self, problem: Problem) -> None:
         self.problem = problem

@@ -12,7 +12,7 @@ from .corrector import correct, hermite
 from .options import Options
 from .problem import Evaluator, Problem
 
-__all__ = ["Status", "SpecialPoint", "Curve", "ContinuationError", "SPECIAL_KINDS"]
+__all__ = ["SPECIAL_KINDS", "ContinuationError", "Curve", "SpecialPoint", "Status"]
 
 #: kinds of :class:`SpecialPoint`
 SPECIAL_KINDS = ("start", "end", "fold", "branch_point", "event", "closed")
@@ -58,13 +58,14 @@ class SpecialPoint:
     x : ndarray, shape (n + 1,)
         The point.
     s : float
-        Its pseudo-arclength.
+        Its arclength (``Curve.s[index]``).
     residual : float
         ``max |H(x)|``.
     accuracy : float
-        Width in pseudo-arclength of the final root bracket (0 if the located
-        function vanished exactly at an accepted point; for start and end
-        points, the Newton tolerance reached).
+        Width in arclength of the final root bracket (0 if the located
+        function vanished exactly at a corrected point; for start and end
+        points, the Newton tolerance; for a branch point passed to
+        ``switch_branch``, the accuracy of its location).
     coordinate : int or None
         The coordinate of a fold, else ``None``.
     tangent : ndarray, shape (n + 1,) or None
@@ -85,7 +86,7 @@ class SpecialPoint:
 class ContinuationError(RuntimeError):
     """A continuation run failed; ``curve`` holds the partial :class:`Curve`."""
 
-    def __init__(self, message: str, curve: "Curve") -> None:
+    def __init__(self, message: str, curve: Curve) -> None:
         super().__init__(message)
         self.curve = curve
 
@@ -100,8 +101,10 @@ class Curve:
         Points, every one with ``max |H| <= tol``, in order of arclength;
         special points are among them.
     s : ndarray, shape (m,)
-        Pseudo-arclength, increasing; equal to arclength up to ``O(ds^3)`` per
-        step (Keller's hyperplane constraint).
+        Arclength from the start, increasing: each step adds its chord
+        ``c`` corrected by the angle ``alpha`` between its end tangents,
+        ``|c| (alpha/2) / sin(alpha/2)`` (exact on circular arcs, ``O(h^5)``
+        per step otherwise).
     tangents : ndarray, shape (m, n + 1)
         Unit tangents, oriented along the direction of travel.
     ds : ndarray, shape (m,)
@@ -174,14 +177,16 @@ class Curve:
         Parameters
         ----------
         s : float
-            ``self.s[0] <= s <= self.s[-1]``.
+            Arclength, ``self.s[0] <= s <= self.s[-1]``.
 
         Returns
         -------
         ndarray, shape (n + 1,)
             The cubic Hermite prediction between the neighbouring points,
             corrected by Newton onto the curve in the hyperplane through the
-            prediction normal to the interpolated tangent (``|H| <= tol``).
+            prediction normal to the interpolated tangent (``|H| <= tol``, the
+            correction converged to ``event_tol``); its arclength is ``s`` up
+            to the ``O(h^4)`` error of the Hermite arc's parametrisation.
 
         Raises
         ------

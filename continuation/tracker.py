@@ -8,12 +8,13 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import NamedTuple, Sequence
+from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 
 from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
-from .events import Event, LocateError, Located, crossed, locate_zero
+from .events import Event, Located, LocateError, crossed, locate_zero
 from .options import Options
 from .problem import Evaluator, Problem
 from .result import ContinuationError, Curve, SpecialPoint, Status
@@ -32,7 +33,7 @@ CLOSE_TOLERANCE = 1e-6
 class _Point:
     """An accepted curve point (internal)."""
 
-    __slots__ = ("x", "s", "tangent", "det", "residual", "iterations", "events")
+    __slots__ = ("det", "events", "iterations", "residual", "s", "tangent", "x")
 
     def __init__(self, x, s, tangent, det, residual, iterations, events):
         self.x = x
@@ -178,6 +179,11 @@ def trace(
 
     where ``p`` is the order of the predictor error (2 Euler, 3 quadratic).
     A step exceeding a limit, or whose corrector fails, is rejected and halved.
+
+    The arclength of a step is its chord corrected by the angle ``alpha``
+    between the end tangents, ``|x_b - x_a| (alpha/2) / sin(alpha/2)``; the
+    predictor's step ``h`` is the pseudo-arclength (Keller's hyperplane
+    distance), which differs from it by ``O(h^3)``.
 
     Special points in each accepted step ``(x_a, x_b]``: event zeros, folds
     (sign changes of ``t_i``) and simple branch points (sign changes of
@@ -549,7 +555,7 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
             index = a_index
         elif located.endpoint == "end":
             if b_index is None:
-                b_index = run.append(b.x, b.s, b.tangent, b.residual, b.iterations)
+                b_index = _append_end(run, a_index, b)
             index = b_index
         elif located.s == previous_s:
             index = len(run.s) - 1
@@ -564,5 +570,16 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
         if item is first_terminal:
             terminal = special
     if terminal is None and b_index is None:
-        run.append(b.x, b.s, b.tangent, b.residual, b.iterations)
+        _append_end(run, a_index, b)
     return terminal
+
+
+def _append_end(run: _Run, a_index: int, b: _Point) -> int:
+    """Append the step's end; after inserted points, its arclength is re-measured
+    from the last of them, so that every increment is at least its chord (an
+    end placed exactly at ``max_arclength`` keeps that value)."""
+    if len(run.s) - 1 != a_index and b.s != run.options.max_arclength:
+        x, t = run.x[-1], run.tangents[-1]
+        angle = math.acos(max(-1.0, min(1.0, float(t @ b.tangent))))
+        b.s = run.s[-1] + _arc_length(b.x - x, angle)
+    return run.append(b.x, b.s, b.tangent, b.residual, b.iterations)

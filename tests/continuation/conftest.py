@@ -66,7 +66,15 @@ def great_circle_problem() -> Problem:
     )
 
 
+def lemniscate_problem() -> Problem:
+    # Bernoulli's lemniscate (x^2 + y^2)^2 = 2 (x^2 - y^2): a figure eight whose
+    # crossing at the origin is a simple branch point passed twice
+    return Problem(lambda x: np.array([(x @ x) ** 2 - 2.0 * (x[0] ** 2 - x[1] ** 2)]),
+                   lambda x: np.array([4.0 * (x @ x) * x - 4.0 * np.array([x[0], -x[1]])]))
+
+
 FOLD = 2.0 / (3.0 * SQRT3)
+R3 = SQRT3 / 2.0
 Z_MAX = math.sqrt(2.0 / 3.0)
 
 CATALOG = (
@@ -85,6 +93,11 @@ CATALOG = (
     Case("transcritical", transcritical_problem(), (-1.0, 0.0), (1.0, 0.0),
          Options(max_arclength=2.0), Status.MAX_ARCLENGTH,
          special={"branch_point": [(0.0, 0.0)]}),
+    Case("lemniscate", lemniscate_problem(), (math.sqrt(2.0), 0.0), None,
+         Options(fold_coordinates=(0, 1)), Status.CLOSED,
+         special={"branch_point": [(0.0, 0.0), (0.0, 0.0)],
+                  "fold": [(R3, 0.5), (-R3, -0.5), (-math.sqrt(2.0), 0.0), (-R3, 0.5),
+                           (R3, -0.5), (math.sqrt(2.0), 0.0)]}),
     Case("ellipse, finite differences", ellipse_problem(),
          (2.0 * math.cos(0.3), 0.5 * math.sin(0.3)), None,
          Options(fold_coordinates=(0, 1)), Status.CLOSED,

@@ -3,8 +3,15 @@
 import numpy as np
 import pytest
 
-from continuation import (Options, SpecialPoint, Status, branch_tangents, locate_branch_point,
-                          switch_branch, trace)
+from continuation import (
+    Options,
+    SpecialPoint,
+    Status,
+    branch_tangents,
+    locate_branch_point,
+    switch_branch,
+    trace,
+)
 
 OPTIONS = Options(max_arclength=2.0)
 

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from continuation import (Options, Problem, check_jacobian, finite_difference_jacobian, trace)
+from continuation import Options, Problem, check_jacobian, finite_difference_jacobian, trace
 
 
 def test_finite_difference_jacobian_matches_analytic(cubic):
@@ -56,8 +56,8 @@ def test_problem_validation():
 @pytest.mark.parametrize("kwargs, message", [
     ({"tol": 0.0}, "Options.tol must be a finite number > 0, got 0.0"),
     ({"tol": math.nan}, "Options.tol must be a finite number > 0, got nan"),
-    ({"ds": 1.0}, "Options.ds must satisfy ds_min <= ds <= ds_max, got ds=1.0 with "
-                  "ds_min=1e-12, ds_max=0.2"),
+    ({"ds": 1.0}, ("Options.ds must satisfy ds_min <= ds <= ds_max, got ds=1.0 with "
+                   "ds_min=1e-12, ds_max=0.2")),
     ({"ds_min": 0.5, "ds": 0.6, "ds_max": 0.4},
      "Options.ds_min must be <= ds_max, got ds_min=0.5, ds_max=0.4"),
     ({"max_steps": 0}, "Options.max_steps must be an integer >= 1, got 0"),
@@ -69,14 +69,22 @@ def test_problem_validation():
     ({"event_tol": -1e-12}, "Options.event_tol must be a finite number > 0, got -1e-12"),
     ({"fold_coordinates": (0, -1)},
      "Options.fold_coordinates must be a tuple of coordinate indices >= 0, got (0, -1)"),
-    ({"fold_coordinates": 3},
-     "Options.fold_coordinates must be a tuple of coordinate indices >= 0, got 3"),
-    ({"detect_closed": 1}, "Options.detect_closed must be True or False, got 1"),
 ])
 def test_options_validation_messages(kwargs, message):
     with pytest.raises(ValueError) as info:
         Options(**kwargs)
     assert str(info.value) == message
+
+
+def test_options_type_errors():
+    message = "Options.fold_coordinates must be a tuple of coordinate indices >= 0, got 3"
+    with pytest.raises(TypeError) as info:
+        Options(fold_coordinates=3)
+    assert str(info.value) == message
+    with pytest.raises(TypeError, match="Options.detect_closed must be True or False, got 1"):
+        Options(detect_closed=1)
+    with pytest.raises(TypeError, match="indices >= 0, got \\(0.5,\\)"):
+        Options(fold_coordinates=(0.5,))
 
 
 def test_options_are_frozen_and_normalised():
