@@ -220,13 +220,17 @@ def switch_branch(
         The problem.
     x_bp : SpecialPoint or array_like of shape (n + 1,)
         A branch point from ``Curve.special('branch_point')`` (its tangent is
-        the current branch), or an approximate branch point, which is located
-        first with :func:`locate_branch_point`.
+        the current branch), or an approximate (or exact) branch point, which
+        is located first with :func:`locate_branch_point`.
     direction : {None, 1, -1} or array_like of shape (n + 1,), optional
         Orientation of the new branch: ``None``/``+1`` along its tangent
         normalised so that its largest-magnitude component is positive, ``-1``
-        the opposite way; an array: positive dot product with it (and, without
-        any current-branch information, the branch closest to it).
+        the opposite way; an array: positive dot product with it. For an
+        array ``x_bp`` without ``tangent_hint`` or ``branch``, an array
+        direction also chooses the branch: the one most nearly parallel to it.
+        Otherwise the new branch is the one other than the current branch
+        (the SpecialPoint's tangent, ``tangent_hint``, ``branch``, or the
+        branch along which an array ``x_bp`` was located).
     options : Options, optional
         Options of the new trace.
     events : sequence of Event, optional
@@ -259,28 +263,29 @@ def switch_branch(
     """
     options = Options() if options is None else options
     evaluator = Evaluator(problem)
+    reference = None
+    if direction is not None and not isinstance(direction, (int, np.integer)):
+        reference = _as_vector("direction", direction)
+    elif direction not in (None, 1, -1):
+        raise ValueError(f"direction must be None, 1, -1 or an array, got {direction!r}")
     if isinstance(x_bp, SpecialPoint):
         x, accuracy, hint = x_bp.x.copy(), x_bp.accuracy, x_bp.tangent
     else:
         located = _locate_branch_point(evaluator, problem, _as_vector("x_bp", x_bp), options,
                                        None)
-        x, accuracy, hint = located.x, located.accuracy, located.tangent
+        # the branch the search happened to run along is a guess of the current
+        # one; a direction array is the caller's explicit choice and wins
+        x, accuracy = located.x, located.accuracy
+        hint = located.tangent if reference is None else None
+    if reference is not None and reference.shape != x.shape:
+        raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, got "
+                         f"{direction!r}")
     if branch is not None and tangent_hint is None:
         nearest = int(np.argmin(np.linalg.norm(branch.x - x, axis=1)))
         hint = branch.tangents[nearest]
     if tangent_hint is not None:
         hint = _as_vector("tangent_hint", tangent_hint)
     first, second = _branch_tangents(evaluator, x)
-
-    reference = None
-    if direction is not None and not isinstance(direction, (int, np.integer)):
-        reference = _as_vector("direction", direction)
-        if reference.shape != x.shape:
-            raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, "
-                             f"got {direction!r}")
-    elif direction not in (None, 1, -1):
-        raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, got "
-                         f"{direction!r}")
     if hint is not None:
         new = first if abs(float(first @ hint)) < abs(float(second @ hint)) else second
     elif reference is not None:

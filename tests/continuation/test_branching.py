@@ -86,6 +86,18 @@ def test_switch_branch_from_an_approximate_point(pitchfork):
     assert curve.jacobian_evals > len(curve)
 
 
+@pytest.mark.parametrize("direction, branch", [([0.0, 1.0], "parabola"), ([0.0, -1.0], "parabola"),
+                                               ([1.0, 0.0], "trivial"), ([-1.0, 0.1], "trivial")])
+def test_switch_branch_at_an_exact_point_chooses_by_direction(pitchfork, direction, branch):
+    curve = switch_branch(pitchfork, [0.0, 0.0], direction=direction, options=OPTIONS)
+    assert curve.status is Status.MAX_ARCLENGTH
+    assert np.all(curve.x[1:] @ np.array(direction) > 0)
+    if branch == "parabola":
+        assert np.max(np.abs(curve.x[1:, 0] - curve.x[1:, 1] ** 2)) <= 1e-9
+    else:
+        assert np.max(np.abs(curve.x[:, 1])) <= 1e-10
+
+
 def test_switch_branch_from_the_exact_singular_point(pitchfork):
     point = locate_branch_point(pitchfork, [0.0, 0.0])
     assert np.max(np.abs(point.x)) <= 1e-10
