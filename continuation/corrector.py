@@ -21,7 +21,7 @@ NON_FINITE = "non-finite residual or Jacobian"
 SINGULAR = "singular bordered Jacobian"
 DIVERGING = "Newton corrections not contracting"
 NO_CONVERGENCE = "no convergence within max_newton iterations"
-TOO_FAR = "first Newton correction longer than max_correction"
+TOO_FAR = "Newton correction longer than max_correction"
 
 
 class Correction:
@@ -138,7 +138,10 @@ def correct(
         Largest accepted ratio ``|dx_(k+1)| / |dx_k|`` while ``|dx|`` is above
         the correction tolerance.
     max_correction : float, optional
-        Largest accepted 2-norm of the first correction.
+        Largest accepted 2-norm of a correction; a longer one is not applied
+        (the iterate is returned if its residual is within ``tol``, else the
+        correction fails), so that Newton cannot slide along a nearly singular
+        direction to another branch.
     target : float or None, optional
         Right-hand side of the border equation; ``None`` means ``b^T x_pred``
         (the hyperplane through the prediction).
@@ -155,6 +158,12 @@ def correct(
 
     Notes
     -----
+    If a later step fails (diverges, meets a singular matrix or a non-finite
+    value), the last iterate with ``max |H| <= tol`` is returned: next to a
+    branch point the bordered matrix is nearly singular and the corrections
+    stall at the rounding level ``eps / sigma_min`` above ``xtol``, or blow up
+    from a point that already solves the equations.
+
     Each step solves Keller's bordered system [1]_
 
     .. math::
@@ -191,10 +200,19 @@ def correct(
     contraction = 0.0
     previous = math.inf
     factors = None
+    # the last iterate with max|H| <= tol: the answer if a later step fails
+    fallback = None
+
+    def failure(reason, rnorm, k, rate=None):
+        if fallback is not None:
+            return fallback
+        return Correction(False, reason, x, None, 0.0, rnorm, k, first,
+                          contraction if rate is None else rate)
+
     for k in range(max_newton + 1):
         rnorm = float(np.abs(H).max()) if H.size else 0.0
-        if not rnorm < math.inf or (J is not None and not np.isfinite(J).all()):
-            return Correction(False, NON_FINITE, x, None, 0.0, math.inf, k, first, contraction)
+        if not rnorm < math.inf:
+            return failure(NON_FINITE, math.inf, k)
         if J is None:
             # Simplified Newton step with the previous factors (Deuflhard's
             # contraction monitor): if the residual and this estimate of the
@@ -207,41 +225,44 @@ def correct(
                 contraction = contraction or estimate / max(first, 1e-300)
                 return Correction(True, "", x, None, 0.0, rnorm, k, first, contraction)
             J = evaluator.jacobian(x)
-            if not np.isfinite(J).all():
-                return Correction(False, NON_FINITE, x, None, 0.0, rnorm, k, first, contraction)
+        if not np.isfinite(J).all():
+            return failure(NON_FINITE, rnorm, k)
         factors = _factor(J, border)
         if factors is None:
-            return Correction(False, SINGULAR, x, None, 0.0, rnorm, k, first, contraction)
+            return failure(SINGULAR, rnorm, k)
         rhs[: n1 - 1, 0] = -H
         rhs[n1 - 1, 0] = target - float(border @ x)
         solution, _ = dgetrs(factors[0], factors[1], rhs)
         dx = solution[:, 0]
         dnorm = float(np.abs(dx).max())
         if not dnorm < math.inf:
-            return Correction(False, SINGULAR, x, None, 0.0, rnorm, k, first, contraction)
+            return failure(SINGULAR, rnorm, k)
         small = dnorm <= xtol * (1.0 + float(np.abs(x).max()))
+        length = math.sqrt(float(dx @ dx))
         if k == 0:
-            first = math.sqrt(float(dx @ dx))
-            if first > max_correction:
-                return Correction(False, TOO_FAR, x, None, 0.0, rnorm, k, first, contraction)
+            first = length
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
-        if k > 0 and not small and dnorm > max_contraction * previous:
-            return Correction(False, DIVERGING, x, None, 0.0, rnorm, k, first,
-                              dnorm / max(previous, 1e-300))
-        if rnorm <= tol and small:
+        if rnorm <= tol:
             v = solution[:, 1]
             vnorm = math.sqrt(float(v @ v))
             border_det = _signed_det(*factors)
-            return Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
-                              contraction, border_det)
+            converged = Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
+                                   contraction, border_det)
+            if small:
+                return converged
+            fallback = converged
+        if length > max_correction:
+            return failure(TOO_FAR, rnorm, k)
+        if k > 0 and not small and dnorm > max_contraction * previous:
+            return failure(DIVERGING, rnorm, k, dnorm / max(previous, 1e-300))
         if k == max_newton:
             break
         previous = dnorm
         x = x + dx
         H = evaluator.residual(x)
         J = evaluator.jacobian(x) if need_tangent else None
-    return Correction(False, NO_CONVERGENCE, x, None, 0.0, rnorm, max_newton, first, contraction)
+    return failure(NO_CONVERGENCE, rnorm, max_newton)
 
 
 def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):

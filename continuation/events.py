@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .corrector import Correction, correct, hermite, tangent_at
+from .corrector import Correction, _factor, _signed_det, correct, hermite, tangent_at
 from .options import Options
 from .problem import Evaluator
 
@@ -255,7 +255,7 @@ def locate_zero(
         result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
                          max_newton=options.max_newton,
                          max_contraction=options.newton_contraction,
-                         need_tangent=need_tangent)
+                         max_correction=JUMP * (s_b - s_a), need_tangent=need_tangent)
         if not result.ok:
             raise LocateError(f"trial point at s={s!r} not corrected: {result.reason}")
         if float(np.linalg.norm(result.x - point)) > JUMP * (s_b - s_a):
@@ -332,3 +332,101 @@ def _brent(f, a: float, fa: float, b: float, fb: float, xtol: float,
         fb = f(b)
     logger.warning("Brent's method did not reach the bracket width %g", xtol)
     return b, fb, abs(c - b)
+
+
+def refine_branch_point(
+    evaluator: Evaluator,
+    options: Options,
+    located: Located,
+    start,
+    end,
+) -> Located:
+    """Refine a branch point located by :func:`locate_zero` beyond ``sqrt(eps)``.
+
+    Parameters
+    ----------
+    evaluator : Evaluator
+        Counting evaluator of the problem.
+    options : Options
+        Tolerances.
+    located : Located
+        The zero of ``det [H'; b^T]`` found with corrected trial points.
+    start, end : object with ``x``, ``s``, ``tangent``
+        The accepted points of the step.
+
+    Returns
+    -------
+    Located
+        The refined branch point, or ``located`` if the refinement does not
+        bracket the zero.
+
+    Notes
+    -----
+    Next to a branch point the bordered matrix has a smallest singular value
+    ``sigma ~ |s - s*|``, so corrected trial points carry rounding errors
+    ``eps / sigma`` and the located point is only accurate to about
+    ``sqrt(eps)``. The branch itself is smooth through the branch point, so two
+    nodes ``d = 3e-4 (1 + max|x|)`` on either side (where ``eps / sigma`` is
+    negligible) are corrected, and the zero of
+    ``det [H'(p(s)); p'(s)^T]`` is found by Brent's method on their cubic
+    Hermite arc ``p`` without further correction: ``p`` is accurate to
+    ``O(d^4)`` and the determinant is smooth, so both the arclength and the
+    point are accurate to about ``event_tol`` (``d`` balances the Hermite
+    error ``d^4`` against the rounding ``eps / d`` at the nodes). A final
+    Gauss-Newton step of minimal norm, blind to the near null space, removes
+    the residual left by the arc.
+    """
+    s_star = located.s
+    distance = 3e-4 * (1.0 + float(np.max(np.abs(located.correction.x))))
+    nodes = []
+    for s in (s_star - distance, s_star + distance):
+        h = end.s - start.s
+        point, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
+        border = derivative / np.linalg.norm(derivative)
+        node = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
+                       max_newton=options.max_newton,
+                       max_contraction=options.newton_contraction,
+                       max_correction=JUMP * distance)
+        if not node.ok:
+            return located
+        nodes.append((s, node.x, node.tangent))
+    (s_a, x_a, t_a), (s_b, x_b, t_b) = nodes
+    width = s_b - s_a
+
+    def on_arc(s: float):
+        point, derivative = hermite(x_a, t_a, x_b, t_b, width, s - s_a)
+        return point, derivative / np.linalg.norm(derivative)
+
+    def determinant(s: float) -> float:
+        point, border = on_arc(s)
+        jacobian = evaluator.jacobian(point)
+        factors = _factor(jacobian, border) if np.isfinite(jacobian).all() else None
+        if factors is None:
+            return 0.0
+        return _signed_det(*factors)
+
+    f_a, f_b = determinant(s_a), determinant(s_b)
+    if not f_a * f_b < 0:
+        return located
+    s, _, accuracy = _brent(determinant, s_a, f_a, s_b, f_b, options.event_tol)
+    point, border = on_arc(s)
+    residual = evaluator.residual(point)
+    rnorm = float(np.max(np.abs(residual)))
+    for _ in range(3):
+        if rnorm <= 1e-3 * options.tol:
+            break
+        # Gauss-Newton steps of minimal norm that ignore the (near) null space
+        # of the rank-deficient H': they remove the O(d^4) residual of the arc
+        # without sliding along either branch
+        jacobian = evaluator.jacobian(point)
+        step = np.linalg.lstsq(jacobian, -residual, rcond=1e-8)[0]
+        trial = point + step
+        trial_residual = evaluator.residual(trial)
+        trial_norm = float(np.max(np.abs(trial_residual)))
+        if not trial_norm < rnorm:
+            break
+        point, residual, rnorm = trial, trial_residual, trial_norm
+    if not rnorm <= options.tol:
+        return located
+    refined = Correction(True, "", point, border, 0.0, rnorm, 0, 0.0, 0.0)
+    return Located(s, refined, accuracy, None)

@@ -14,7 +14,7 @@ from typing import NamedTuple
 import numpy as np
 
 from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
-from .events import Event, Located, LocateError, crossed, locate_zero
+from .events import Event, Located, LocateError, crossed, locate_zero, refine_branch_point
 from .options import Options
 from .problem import Evaluator, Problem
 from .result import ContinuationError, Curve, SpecialPoint, Status
@@ -520,6 +520,8 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
         try:
             located = locate_zero(run.evaluator, options, function, a, b, f_a, f_b,
                                   need_tangent)
+            if kind == "branch_point" and located.endpoint is None:
+                located = refine_branch_point(run.evaluator, options, located, a, b)
         except LocateError as error:
             logger.warning("could not locate %s '%s' between s=%.12g and s=%.12g (%s); "
                            "reported at the step's end with accuracy %.3g", kind, name, a.s,
