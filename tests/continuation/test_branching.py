@@ -5,6 +5,7 @@ import pytest
 
 from continuation import (
     Options,
+    Problem,
     SpecialPoint,
     Status,
     branch_tangents,
@@ -127,3 +128,23 @@ def test_switch_branch_needs_to_know_the_current_branch(pitchfork):
 def test_no_branch_point_nearby(circle):
     with pytest.raises(ValueError, match="no branch point found"):
         locate_branch_point(circle, [1.0, 0.1])
+
+
+def test_branch_points_on_a_curved_branch_and_switching_at_both():
+    # the parabola u = lambda^2 / 2 crosses the line u = lambda at (0, 0) and (2, 2)
+    problem = Problem(
+        lambda x: np.array([(x[1] - x[0] ** 2 / 2) * (x[0] - x[1])]),
+        lambda x: np.array([[-x[0] * (x[0] - x[1]) + (x[1] - x[0] ** 2 / 2),
+                             (x[0] - x[1]) - (x[1] - x[0] ** 2 / 2)]]))
+    parabola = trace(problem, [-1.0, 0.5], direction=[1.0, 0.0],
+                     options=Options(max_arclength=5.0))
+    points = parabola.special("branch_point")
+    assert len(points) == 2
+    for point, expected in zip(points, ([0.0, 0.0], [2.0, 2.0])):
+        assert np.max(np.abs(point.x - expected)) <= 1e-10
+        for direction in (1, -1):
+            line = switch_branch(problem, point, direction=direction,
+                                 options=Options(max_arclength=0.5))
+            assert line.status is Status.MAX_ARCLENGTH
+            assert np.max(np.abs(line.x[:, 1] - line.x[:, 0])) <= 1e-10
+            assert np.sign(line.x[-1, 0] - expected[0]) == direction
