@@ -77,7 +77,7 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
                     sel = marked[marked["point"] == kind]
                     if len(sel):
                         artists.append(ax.scatter(sel["gamma"] * scale, sel["delta"] * scale,
-                                                  marker=marker, s=28, color=colour, zorder=3,
+                                                  marker=marker, s=28, color=colour, zorder=3, clip_on=False,
                                                   edgecolors="white", linewidths=0.5))
     ax.set_xlim(0, top)
     ax.set_ylim(0, top * 0.55)

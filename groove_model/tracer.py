@@ -59,9 +59,10 @@ SPECIAL_POINT_COLUMNS = ("boundary", "k", "kind", "gamma", "delta", "beta_L", "u
 SPECIAL_KINDS = ("start", "end", "junction", "fold_gamma", "branch_point")
 _PRIORITY = {"branch_point": 0, "junction": 1, "fold_gamma": 2, "start": 3, "end": 4}
 
-#: Engine settings for the boundaries: residuals to 1e-12 so CSV rows recomputed from their
-#: 17-digit columns satisfy the equations to 1e-10; steps small enough for smooth plots.
-DEFAULT_OPTIONS = Options(tol=1e-12, ds=0.02, ds_min=1e-12, ds_max=0.05, max_steps=5000,
+#: Engine settings for the boundaries: residuals to 1e-11 (rounding noise in H reaches ~4e-12
+#: where |J| ~ 2e4), so CSV rows recomputed from their 17-digit columns satisfy the equations
+#: to 1e-10; steps small enough for smooth plots.
+DEFAULT_OPTIONS = Options(tol=1e-11, ds=0.02, ds_min=1e-12, ds_max=0.05, max_steps=5000,
                           fold_coordinates=(0,), detect_branch_points=False, detect_closed=False)
 GAMMA_MIN = 1e-3
 
@@ -279,8 +280,10 @@ def _assemble(name: str, system: BoundarySystem, curve: Curve, keep_unphysical: 
         if p.index == 0:
             continue  # a validity function vanishes at a seed on the regime limit: no crossing
         if p.kind == "fold" and p.coordinate == 0:
-            if _at_corner(x[p.index]):
-                continue  # in the w chart gamma is stationary at the corner: the end, not a fold
+            if _at_corner(x[p.index]) or np.linalg.norm(x[p.index] - x[0]) <= 1e-8:
+                # In the w chart gamma is stationary at the corner; at the branch point it is
+                # stationary by the symmetry delta -> -delta. Both are ends, not turning points.
+                continue
             specials.append((p.index, "fold_gamma", "turning point in gamma"))
         elif p.kind == "event" and p.name.startswith("validity"):
             cut = p.name.removeprefix("validity ")
@@ -299,17 +302,17 @@ def _assemble(name: str, system: BoundarySystem, curve: Curve, keep_unphysical: 
             continue
         points.append(BoundarySpecialPoint(name, kind, x[index].copy(), float(s[index]),
                                            int(index_map[index]), note))
-    if not keep_unphysical and np.any(keep):
-        # The physical part starts and ends where the cut events lie: mark them.
+    if np.any(keep):
+        # Every kept part starts and ends at a located point: mark the first and last.
         first, last = np.flatnonzero(keep)[[0, -1]]
         kinds = {(p.index, p.kind) for p in points}
-        if (int(index_map[first]), "start") not in kinds and first != 0:
+        if (int(index_map[first]), "start") not in kinds:
             points.append(BoundarySpecialPoint(name, "start", x[first].copy(), float(s[first]),
                                                int(index_map[first]), "regime becomes valid"))
-        if last != len(x) - 1 and not any(p.index == index_map[last] and p.kind in
-                                          ("end", "junction") for p in points):
+        if curve.ok and (int(index_map[last]), "end") not in kinds:
+            note = next((p.note for p in points if p.index == index_map[last]), "regime limit")
             points.append(BoundarySpecialPoint(name, "end", x[last].copy(), float(s[last]),
-                                               int(index_map[last]), "regime limit"))
+                                               int(index_map[last]), note))
     points.sort(key=lambda p: (p.index, _PRIORITY[p.kind]))
     residual = max((float(np.max(np.abs(BoundarySystem(name, system.params).residual(xi))))
                     for xi in x[keep]), default=0.0)
@@ -400,9 +403,13 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         _problem(system), system.from_x(dr_no_roll_branch_point()), direction=up,
         options=options, events=[*domain, *_validity_events(system)])
     curve = _assemble("dr_no_roll", system, engine["dr_no_roll"], keep_unphysical,
-                      "branch_point", "branch point (arctan sqrt 2, 0) off the symmetric family")
-    if len(curve.x) or not curve.ok:
+                      "branch_point", "branch point (arctan sqrt 2, 0) off the symmetric family; "
+                      "gamma is stationary there (symmetry delta -> -delta)")
+    if len(curve.x) >= 2 or not curve.ok:
         curves["dr_no_roll"] = curve
+    elif len(curve.x) == 1:
+        notes.append(f"dr_no_roll reduces to its branch point (arctan sqrt 2, 0) for "
+                     f"k = {params.k:.17g}: T/N = sqrt 2 = k there and > k beyond")
     else:
         notes.append(f"dr_no_roll has no physical part for k = {params.k:g}: "
                      "T/N_L > k all along it")
@@ -410,13 +417,13 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     # rs_no_roll from the junction (k > sqrt 2) or from the seed, into the rolling-sliding side.
     system = systems["rs_no_roll"]
     if junction is not None:
+        # From dr_limit (d_L = 0) into the rolling-sliding side, where d_L grows.
         start = junction.x
         start_note = "junction with dr_limit where upsilon = 0"
+        direction = _direction_of_increase(system.validity["d_L >= 0"], start)
     else:
         start = system.from_x(seed)
         start_note = "seed (arctan k, 0)"
-    direction = _direction_of_increase(system.validity["d_L >= 0"], start)
-    if not np.any(direction):
         direction = up
     engine["rs_no_roll"] = trace(_problem(system), start, direction=direction, options=options,
                                  events=[*domain, *_validity_events(system)])
