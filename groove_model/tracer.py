@@ -346,7 +346,8 @@ def _direction_of_increase(f, y: np.ndarray, h: float = 1e-7) -> np.ndarray:
 
 
 def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | None = None,
-                     gamma_min: float = GAMMA_MIN, raise_on_failure: bool = False) -> BoundarySet:
+                     gamma_min: float | None = None,
+                     raise_on_failure: bool = False) -> BoundarySet:
     """Trace ``dr_limit``, ``rs_limit``, ``dr_no_roll`` and ``rs_no_roll`` for friction ``k``.
 
     Parameters
@@ -357,8 +358,9 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         Keep the parts of each boundary where its regime is not valid (flagged).
     options : continuation.Options, optional
         Engine settings; the default resolves the curves for plotting with residuals <= 1e-12.
-    gamma_min : float
-        Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin.
+    gamma_min : float, optional
+        Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
+        ``min(1e-3, arctan(k) / 100)``.
     raise_on_failure : bool
         Raise :class:`TraceError` (carrying everything traced) if any boundary failed.
 
@@ -368,6 +370,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     """
     params = k if isinstance(k, Parameters) else Parameters(k)
     options = options or DEFAULT_OPTIONS
+    if gamma_min is None:
+        gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
     if not (0.0 < gamma_min < params.gamma_limit):
         raise ValueError(f"gamma_min = {gamma_min!r} is outside the allowed range "
                          f"0 < gamma_min < arctan(k) = {params.gamma_limit!r}")
