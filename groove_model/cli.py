@@ -240,6 +240,47 @@ def _run_plot(args) -> int:
     return EXIT_OK
 
 
+_REPRODUCE_EXAMPLES = """examples:
+  groove reproduce                  # regenerate results/ (the README's main command)
+  groove reproduce --out elsewhere/
+
+runs, in order: groove trace -k 1 -k 10 --out OUT; groove map -k 1 -o OUT/map_k1.png --svg;
+groove map -k 10 -o OUT/map_k10.png --svg; groove audit --trace --out OUT
+"""
+
+
+def _add_reproduce(sub) -> None:
+    p = sub.add_parser(
+        "reproduce", help="regenerate every committed result: Figure 2, regime maps, claims audit",
+        description="Regenerate the paper's Figure 2 (boundaries for k = 1 and 10, CSV and "
+                    "figure), the regime maps for k = 1 and 10, and the audit of the paper's "
+                    "claims, into one directory.",
+        epilog=_REPRODUCE_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--out", default="results", help="output directory (default results/)")
+    p.set_defaults(run=_run_reproduce)
+
+
+def _run_reproduce(args) -> int:
+    from pathlib import Path
+
+    out = Path(args.out)
+    steps = (
+        ["trace", "-k", "1", "-k", "10", "--out", str(out)],
+        ["map", "-k", "1", "-o", str(out / "map_k1.png"), "--svg"],
+        ["map", "-k", "10", "-o", str(out / "map_k10.png"), "--svg"],
+        ["audit", "--trace", "--out", str(out)],
+    )
+    parser = build_parser()
+    out.mkdir(parents=True, exist_ok=True)
+    for argv in steps:
+        log.info("groove %s", " ".join(argv))
+        step = parser.parse_args(argv)
+        code = step.run(step)
+        if code != EXIT_OK:
+            return code
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The ``groove`` argument parser with every subcommand."""
     parser = argparse.ArgumentParser(
@@ -249,13 +290,21 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="examples:\n  groove solve --gamma 0.6 --delta 0.2 -k 1\n"
                "  groove trace -k 1 -k 10 --out results/\n"
                "  groove plot results/boundaries_k1.csv -o k1.png\n"
+               "  groove map -k 10 -o map_k10.png --svg\n"
+               "  groove audit -k 1 10\n"
+               "  groove reproduce                     # regenerate results/\n"
                "run 'groove COMMAND --help' for each command's options and examples",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    from .cli_analysis import add_audit_command, add_map_command
+
     _add_solve(sub)
     _add_trace(sub)
     _add_plot(sub)
+    add_map_command(sub)
+    add_audit_command(sub)
+    _add_reproduce(sub)
     return parser
 
 

@@ -264,6 +264,10 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     sliding_both = (delta == 0.0) & (gamma > params.gamma_limit)
     with np.errstate(invalid="ignore"):
         use_dr = (dr["T_over_N_L"] <= k) & (dr["T_over_N_R"] <= k) & ~sliding_both
+    # On delta = 0, T/N = c tan gamma <= k exactly when gamma <= arctan(k/c); deciding by the
+    # angle avoids tan(pi/4) rounding above 1 at the seed itself.
+    on_axis = delta == 0.0
+    use_dr[on_axis] = ~sliding_both[on_axis]
     use_rs = ~use_dr & ~sliding_both
 
     out = {name: np.zeros(gamma.shape) for name in (

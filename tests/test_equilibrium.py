@@ -149,3 +149,10 @@ def test_dimensional_input_errors(kwargs, message):
     args = dict(radius=0.01, young=2e11, poisson=0.3, mass=0.03) | kwargs
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         dimensional_state(eq, **args)
+
+
+@pytest.mark.parametrize("k", [1.0, math.sqrt(3.0), 10.0])
+def test_seed_itself_is_double_rolling(k):
+    """At (arctan k, 0) T/N = k exactly: still double rolling, whatever tan rounds to."""
+    eq = solve_equilibrium(math.atan(k), 0.0, k)
+    assert eq.regime == "double_rolling" and eq.rotation == "none"
