@@ -38,14 +38,16 @@ def _friction(text: str) -> float:
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
-def _real(name: str):
+def _real(name: str, allowed: str = "a finite number"):
     def parse(text: str) -> float:
         try:
             value = float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{name} = {text!r} is not a number") from None
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is not a number; allowed range: {allowed}") from None
         if not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{name} = {text!r} must be finite")
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is outside the allowed range: {allowed}")
         return value
 
     parse.__name__ = name
@@ -66,9 +68,11 @@ def _add_solve(sub) -> None:
                     "loading direction beta_L, beta_R, rolling upsilon, force ratios, slip, "
                     "rotation sense. Angles in radians unless --deg.",
         epilog=_SOLVE_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--gamma", required=True, type=_real("gamma"),
+    p.add_argument("--gamma", required=True,
+                   type=_real("gamma", "0 <= gamma <= pi/2 (90 with --deg)"),
                    help="half-sum of the wall angles, 0 <= gamma <= pi/2")
-    p.add_argument("--delta", required=True, type=_real("delta"),
+    p.add_argument("--delta", required=True,
+                   type=_real("delta", "0 <= delta <= gamma"),
                    help="half-difference of the wall angles, 0 <= delta <= gamma")
     p.add_argument("-k", required=True, type=_friction, help="friction coefficient, > 0")
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
@@ -189,6 +193,9 @@ def _run_trace(args) -> int:
     from .plotting import save_overlay
     from .tracer import trace_boundaries
 
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} exists and is not a directory")
     sets = []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %g", k)
@@ -200,9 +207,6 @@ def _run_trace(args) -> int:
     if not all(b.ok for b in sets):
         print("groove trace: nothing written: a boundary failed (see above)", file=sys.stderr)
         return EXIT_FAILED
-    out = Path(args.out)
-    if out.exists() and not out.is_dir():
-        raise UsageError(f"--out {out} exists and is not a directory")
     for result in sets:
         paths = write_boundary_set(result, out)
         print(f"k = {result.k:g}: {', '.join(str(p) for p in paths)}; "
@@ -227,8 +231,10 @@ def _run_plot(args) -> int:
     for name in args.files:
         try:
             frames.append(read_boundaries_csv(name))
-        except (OSError, ValueError) as exc:
-            raise UsageError(f"cannot read {name}: {exc}") from None
+        except OSError as exc:
+            raise UsageError(f"cannot read {name}: {exc.strerror or exc}") from None
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
     target = Path(args.output)
     fmt = target.suffix.lstrip(".").lower()
     if fmt not in ("png", "svg", "pdf"):

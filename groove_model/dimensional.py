@@ -76,6 +76,12 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     Returns
     -------
     DimensionalState
+
+    Raises
+    ------
+    ValueError
+        For a parameter outside its range, or where the scaled vertical force vanishes
+        (``gamma = pi/2``), so no finite approach ``Z`` carries the weight.
     """
     R = _positive("radius R", radius, "m")
     E = _positive("Young's modulus E", young, "Pa")
@@ -92,6 +98,14 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     n_L, n_R, t = (np.asarray(v, float) for v in (eq.n_L, eq.n_R, eq.t))
     vertical = (n_L * np.cos(eq.theta_L) + t * np.sin(eq.theta_L)
                 + n_R * np.cos(eq.theta_R) + t * np.sin(eq.theta_R))
+    degenerate = ~(np.asarray(vertical) > 1e-12)
+    if np.any(degenerate):
+        where = np.flatnonzero(np.ravel(degenerate))[0]
+        gamma = float(np.ravel(eq.gamma)[where])
+        raise ValueError(
+            f"no dimensional equilibrium at gamma = {gamma!r} rad: the Hertz forces cannot carry "
+            "the weight (scaled vertical force ~ 0; at gamma = pi/2 the groove is closed and "
+            "beta_L = beta_R = 0); allowed range for dimensional results: gamma < pi/2")
     Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
     scale = C * Z**1.5
     N_L, N_R = scale * n_L, scale * n_R

@@ -10,8 +10,10 @@ import os
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
+from .boundaries import BOUNDARY_NAMES
 from .tracer import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
 
 __all__ = ["atomic_write", "boundary_file_names", "read_boundaries_csv", "write_boundary_set"]
@@ -75,7 +77,8 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     OSError
         If the file cannot be read.
     ValueError
-        If it is not a boundaries CSV (names the missing columns).
+        If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name, or
+        a value that is not a number (the message names the column, value and row).
     """
     path = Path(path)
     try:
@@ -87,6 +90,28 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     if missing:
         raise ValueError(f"{path}: not a boundaries CSV; missing columns {', '.join(missing)} "
                          f"(expected {','.join(CSV_COLUMNS)})")
+    if not len(frame):
+        raise ValueError(f"{path}: no rows")
+    unknown = sorted(set(frame["boundary"]) - set(BOUNDARY_NAMES))
+    if unknown:
+        raise ValueError(f"{path}: unknown boundary {unknown[0]!r}; allowed "
+                         f"{', '.join(BOUNDARY_NAMES)}")
+    for column in CSV_COLUMNS:
+        if column in ("boundary", "point", "physical"):
+            continue
+        values = pd.to_numeric(frame[column], errors="coerce")
+        finite_required = column not in ("T_over_N_L", "T_over_N_R")
+        bad = values.isna() | (~np.isfinite(values) if finite_required else False)
+        if bad.any():
+            row = int(np.flatnonzero(bad.to_numpy())[0])
+            raise ValueError(f"{path}: column {column} = {frame[column].iloc[row]!r} in data row "
+                             f"{row + 1} is not a {'finite ' if finite_required else ''}number")
+        frame[column] = values.astype(float)
+    if not np.all(frame["k"] > 0):
+        raise ValueError(f"{path}: column k must be > 0")
     frame["point"] = frame["point"].fillna("")
-    frame["physical"] = frame["physical"].astype(str).str.lower().eq("true")
+    physical = frame["physical"].astype(str).str.lower()
+    if not physical.isin(["true", "false"]).all():
+        raise ValueError(f"{path}: column physical must be True or False")
+    frame["physical"] = physical.eq("true")
     return frame

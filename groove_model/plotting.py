@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 
 from .tracer import BoundarySet
 
@@ -77,7 +76,7 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
                     sel = marked[marked["point"] == kind]
                     if len(sel):
                         artists.append(ax.scatter(sel["gamma"] * scale, sel["delta"] * scale,
-                                                  marker=marker, s=28, color=colour, zorder=3, clip_on=False,
+                                                  marker=marker, s=60 if kind == "branch_point" else 28, color=colour, zorder=3, clip_on=False,
                                                   edgecolors="white", linewidths=0.5))
     ax.set_xlim(0, top)
     ax.set_ylim(0, top * 0.55)
@@ -101,7 +100,12 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
 
 
 def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "svg")) -> list:
-    """Draw an overlay and write it atomically as each format (suffix replaced)."""
+    """Draw an overlay and write it atomically in each format.
+
+    ``path`` may end in ``.png``, ``.svg`` or ``.pdf`` (replaced by each format) or have no
+    such suffix (the format's is appended, so names like ``boundaries_k0.5`` stay whole).
+    SVG output is deterministic (fixed ``svg.hashsalt``, no date).
+    """
     from pathlib import Path
 
     import matplotlib
@@ -111,6 +115,8 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
 
     from .export import atomic_write
 
+    path = Path(path)
+    stem = path.with_suffix("") if path.suffix.lower() in (".png", ".svg", ".pdf") else path
     fig, ax = plt.subplots(figsize=(7.0, 4.6), layout="constrained")
     try:
         draw_boundaries(ax, boundary_sets, degrees=degrees)
@@ -119,9 +125,10 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
                      + ", ".join(f"{k:g}" for k in ks), fontsize=10)
         written = []
         for fmt in formats:
-            target = Path(path).with_suffix("." + fmt)
-            written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
+            target = stem.parent / f"{stem.name}.{fmt}"
+            with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+                written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
+                    tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
         return written
     finally:
         plt.close(fig)

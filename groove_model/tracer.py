@@ -258,10 +258,10 @@ def _end_note(curve: Curve, x_end) -> str:
         return _CORNER_NOTE
     events = [p for p in curve.special_points if p.kind == "event"]
     last = events[-1] if events else None
-    if last is not None and last.kind == "event" and last.name == "gamma = gamma_min":
+    if last is not None and last.name == "gamma = gamma_min":
         return (f"approaching the singular corner (0, 0) along delta = gamma; "
                 f"stopped at gamma = {curve.x[-1][0]:.3g}")
-    if last is not None and last.kind == "event":
+    if last is not None:
         return f"domain edge {last.name}"
     return curve.status.value
 
@@ -286,9 +286,19 @@ def _assemble(name: str, system: BoundarySystem, curve: Curve, keep_unphysical: 
                 continue
             specials.append((p.index, "fold_gamma", "turning point in gamma"))
         elif p.kind == "event" and p.name.startswith("validity"):
+            # A cut point: the physical part ends (or begins) here only if the physical flag
+            # changes across it; a validity function that crosses zero while another one is
+            # still violated (or touches zero) cuts nothing.
+            i = p.index
+            before = physical[i - 1] if i > 0 else False
+            after = physical[i + 1] if i + 1 < len(x) else False
             cut = p.name.removeprefix("validity ")
-            kind = "junction" if cut == "T_over_N_L <= k" else "end"
-            specials.append((p.index, kind, f"regime limit: {cut} fails beyond"))
+            if before and not after:
+                specials.append((i, "end", f"regime limit: {cut} fails beyond"))
+                if cut == "T_over_N_L <= k":
+                    specials.append((i, "junction", "meets dr_limit (T = k N_L)"))
+            elif after and not before:
+                specials.append((i, "start", f"regime becomes valid: {cut} holds beyond"))
     for index, note in junctions:
         specials.append((index, "junction", note))
     if curve.ok:
@@ -332,11 +342,15 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     worst = 0.0
     for x in rs.x:
-        y0 = system.from_x(x)
-        y = y0.copy()
-        for _ in range(4):
+        y = system.from_x(x)
+        for _ in range(20):
             H, J = system.residual_and_jacobian(y)
-            y = y - np.linalg.lstsq(J, H, rcond=None)[0]
+            step = np.linalg.lstsq(J, H, rcond=None)[0]
+            y = y - step
+            if np.linalg.norm(step) <= 1e-13 * (1.0 + np.linalg.norm(y)):
+                break
+        else:
+            return math.nan  # not converged: no distance is claimed
         worst = max(worst, float(np.linalg.norm(system.to_x(y) - x)))
     return worst
 
@@ -357,7 +371,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     keep_unphysical : bool
         Keep the parts of each boundary where its regime is not valid (flagged).
     options : continuation.Options, optional
-        Engine settings; the default resolves the curves for plotting with residuals <= 1e-12.
+        Engine settings; the default (:data:`DEFAULT_OPTIONS`) resolves the curves for plotting
+        with residuals <= 1e-11.
     gamma_min : float, optional
         Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
         ``min(1e-3, arctan(k) / 100)``.

@@ -156,3 +156,9 @@ def test_seed_itself_is_double_rolling(k):
     """At (arctan k, 0) T/N = k exactly: still double rolling, whatever tan rounds to."""
     eq = solve_equilibrium(math.atan(k), 0.0, k)
     assert eq.regime == "double_rolling" and eq.rotation == "none"
+
+
+def test_dimensional_results_refuse_the_closed_groove():
+    eq = solve_equilibrium(0.5 * math.pi, 0.5 * math.pi, 1.0)
+    with pytest.raises(ValueError, match=r"no dimensional equilibrium at gamma = 1.5707963267948966 rad"):
+        dimensional_state(eq, 0.01, 2e11, 0.3, 0.033)

@@ -145,3 +145,30 @@ def test_draw_boundaries_on_given_axes(written):
     finally:
         plt.close(fig)
     assert math.isfinite(sets[10.0].limit_distance)
+
+
+@pytest.mark.parametrize("body, message", [
+    ("0.5,xyz", "column k = 'xyz' in data row 1 is not a finite number"),
+    ("abc,1", "column gamma = 'abc' in data row 1 is not a finite number"),
+    ("nan,1", "column gamma = 'nan' in data row 1 is not a finite number"),
+])
+def test_plot_command_bad_values(body, message, written, tmp_path, capsys):
+    out, _ = written
+    frame = pd.read_csv(out / "boundaries_k1.csv", keep_default_na=False, dtype=str).head(3)
+    gamma_or_k = body.split(",")
+    if "k =" in message:
+        frame.loc[0, "k"] = gamma_or_k[1]
+    else:
+        frame.loc[0, "gamma"] = gamma_or_k[0]
+    path = tmp_path / "bad.csv"
+    frame.to_csv(path, index=False)
+    with pytest.raises(SystemExit) as info:
+        main(["plot", str(path), "-o", str(tmp_path / "f.png")])
+    assert info.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_overlay_name_keeps_dots(tmp_path):
+    assert main(["trace", "-k", "0.5", "-k", "2.5", "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "boundaries_k0.5_k2.5.png").exists()
+    assert (tmp_path / "boundaries_k0.5_k2.5.svg").exists()
