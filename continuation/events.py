@@ -16,7 +16,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .corrector import Correction, _factor, _signed_det, correct, hermite, tangent_at
+from .corrector import (
+    SINGULAR,
+    Correction,
+    _factor,
+    _signed_det,
+    correct,
+    hermite,
+    tangent_at,
+)
 from .options import Options
 from .problem import Evaluator
 
@@ -28,6 +36,9 @@ _EPS = np.finfo(float).eps
 
 #: a corrected trial point may move at most this fraction of its Hermite interval
 JUMP = 0.1
+
+#: relative offset of a trial point retried beside an exactly singular one
+NUDGE = 1e-9
 
 #: a trial's tangent is used when its cosine with the interpolated tangent exceeds this
 RELIABLE = math.cos(0.1)
@@ -250,12 +261,17 @@ def locate_zero(
     def evaluate(s: float) -> float:
         k = next(k for k in range(1, len(nodes)) if nodes[k][0] >= s)
         (s_a, x_a, t_a), (s_b, x_b, t_b) = nodes[k - 1], nodes[k]
-        point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s - s_a)
-        border = derivative / np.linalg.norm(derivative)
-        result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                         max_newton=options.max_newton,
-                         max_contraction=options.newton_contraction,
-                         max_correction=JUMP * (s_b - s_a), need_tangent=need_tangent)
+        for nudge in (0.0, NUDGE * (s_b - s_a)):
+            # a trial exactly at a branch point meets an exactly singular bordered
+            # matrix; one a hair beside it (the zero is then refined) does not
+            point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s + nudge - s_a)
+            border = derivative / np.linalg.norm(derivative)
+            result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
+                             max_newton=options.max_newton,
+                             max_contraction=options.newton_contraction,
+                             max_correction=JUMP * (s_b - s_a), need_tangent=need_tangent)
+            if result.ok or result.reason != SINGULAR:
+                break
         if not result.ok:
             raise LocateError(f"trial point at s={s!r} not corrected: {result.reason}")
         if float(np.linalg.norm(result.x - point)) > JUMP * (s_b - s_a):

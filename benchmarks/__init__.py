@@ -1,0 +1,1 @@
+"""Benchmarks of the continuation engine and the boundary tracer (``python benchmarks/run.py``)."""

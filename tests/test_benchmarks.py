@@ -1,0 +1,82 @@
+"""The benchmark harness on a tiny configuration: record schema and our accuracy (never speed)."""
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from benchmarks import standard
+from benchmarks.records import KEYS, markdown_table
+from benchmarks.run import Config, build_records, main
+
+TINY = Config(repeats=1, standard_tools=("ours",), groove_problems=("groove_k1",),
+              groove_tools=("ours", "fsolve_natural", "grid_contour"), grid_sizes=(32, 48),
+              fsolve_points=10)
+
+
+@pytest.fixture(scope="module")
+def records():
+    return build_records(TINY)
+
+
+def test_one_record_per_problem_and_tool(records):
+    pairs = [(r.problem, r.tool) for r in records]
+    assert pairs == [("cubic", "ours"), ("circle", "ours"), ("groove_k1", "ours"),
+                     ("groove_k1", "fsolve_natural"), ("groove_k1", "grid_contour")]
+
+
+def test_json_schema(records):
+    for record in records:
+        item = json.loads(json.dumps(record.to_json()))
+        assert tuple(item)[: len(KEYS)] == KEYS
+        assert set(item) <= {*KEYS, "note"}
+        assert isinstance(item["problem"], str) and isinstance(item["tool"], str)
+        assert item["wall_s"] is None or item["wall_s"] > 0
+        for key in ("points", "residual_evals", "jacobian_evals"):
+            assert isinstance(item[key], int) and item[key] >= 0
+        for key in ("max_residual", "fold_error"):
+            assert item[key] is None or isinstance(item[key], float)
+        assert isinstance(item["ok"], bool)
+
+
+def test_ours_is_ok_and_locates_folds_to_1e_10(records):
+    for record in records:
+        if record.tool == "ours":
+            assert record.ok, record.note
+            assert record.fold_error is not None and record.fold_error <= 1e-10
+            assert record.max_residual <= 1e-10
+            assert record.points > 0 and record.residual_evals >= record.points
+
+
+def test_baselines_report_their_accuracy(records):
+    by_tool = {r.tool: r for r in records if r.problem == "groove_k1"}
+    assert "error against our curve" in by_tool["fsolve_natural"].note
+    assert "N=32" in by_tool["grid_contour"].note and "N=48" in by_tool["grid_contour"].note
+
+
+def test_a_missing_peer_is_a_failed_record(monkeypatch):
+    monkeypatch.setitem(sys.modules, "pycont", None)  # import pycont raises ImportError
+    (record,) = standard.run_standard(("cubic",), ("pycont-lite",), repeats=1)
+    assert record.ok is False and record.wall_s is None
+    assert "import failed" in record.note
+
+
+def test_a_failing_tool_does_not_crash_the_harness(monkeypatch):
+    def broken(problem, repeats):
+        raise RuntimeError("boom")
+    monkeypatch.setitem(standard.TOOLS, "ours", broken)
+    (record,) = standard.run_standard(("circle",), ("ours",), repeats=1)
+    assert record.ok is False and "boom" in record.note
+
+
+def test_table_and_json_file(records, tmp_path, monkeypatch, capsys):
+    table = markdown_table(records)
+    assert table.count("\n") == len(records) + 1
+    monkeypatch.setattr("benchmarks.run.QUICK", TINY)
+    out = tmp_path / "out.json"
+    assert main(["--quick", "--json", str(out)]) == 0
+    assert "| cubic | ours |" in capsys.readouterr().out
+    assert [item["tool"] for item in json.loads(out.read_text())] == [r.tool for r in records]
