@@ -593,8 +593,10 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
         written = []
         for fmt in formats:
             target = path.with_suffix("." + fmt)
-            written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=dpi, metadata={"Date": None} if f == "svg" else None)))
+            # A fixed hash salt and no date make the SVG the same on every run.
+            with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+                written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
+                    tmp, format=f, dpi=dpi, metadata={"Date": None} if f == "svg" else None)))
         return written
     finally:
         plt.close(fig)

@@ -345,7 +345,7 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
         y = system.from_x(x)
         for _ in range(20):
             H, J = system.residual_and_jacobian(y)
-            step = np.linalg.lstsq(J, H, rcond=None)[0]
+            step = J.T @ np.linalg.solve(J @ J.T, H)  # minimum-norm solution of J step = H
             y = y - step
             if np.linalg.norm(step) <= 1e-13 * (1.0 + np.linalg.norm(y)):
                 break
