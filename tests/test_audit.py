@@ -30,7 +30,8 @@ from groove_model.equilibrium import (
 )
 from groove_model.parameters import Parameters
 
-PAPER = Path("/work/shared/paper/ball_in_a_groove.tex")
+# shared/ sits beside the repository (here and in CI).
+PAPER = Path(__file__).resolve().parents[2] / "shared" / "paper" / "ball_in_a_groove.tex"
 SQRT2 = math.sqrt(2.0)
 
 
