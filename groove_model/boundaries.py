@@ -222,7 +222,7 @@ class BoundarySystem:
 
 def boundary_system(name: str, k_or_params, chart: str = "beta_L") -> BoundarySystem:
     """The boundary system ``name`` for friction ``k`` (or a :class:`Parameters`)."""
-    params = k_or_params if isinstance(k_or_params, Parameters) else Parameters(k_or_params)
+    params = Parameters.coerce(k_or_params)
     return BoundarySystem(name, params, chart)
 
 

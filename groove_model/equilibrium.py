@@ -121,10 +121,6 @@ class Equilibrium:
         return out
 
 
-def _as_parameters(k_or_params) -> Parameters:
-    return k_or_params if isinstance(k_or_params, Parameters) else Parameters(k_or_params)
-
-
 def _ratio(num, den):
     """``num / den`` with ``+inf`` where ``den == 0`` (a vanishing normal force), no warnings."""
     out = np.full(np.broadcast(num, den).shape, np.inf)
@@ -221,7 +217,7 @@ def regime_validity(gamma, delta, k_or_params):
         rolling sliding. On ``delta = 0`` beyond ``arctan(k/c)`` the rolling-sliding state is
         the double-sliding one (both walls at ``T = kN``).
     """
-    params = _as_parameters(k_or_params)
+    params = Parameters.coerce(k_or_params)
     gamma, delta = check_domain(gamma, delta)
     dr = double_rolling_state(gamma, delta, params)
     rs = rolling_sliding_state(gamma, delta, params)
@@ -255,7 +251,7 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     ValueError, TypeError
         For ``k`` or angles outside their ranges (the message names the quantity and range).
     """
-    params = _as_parameters(k_or_params)
+    params = Parameters.coerce(k_or_params)
     scalar = np.ndim(gamma) == 0 and np.ndim(delta) == 0
     gamma, delta = check_domain(gamma, delta)
     gamma, delta = np.atleast_1d(gamma), np.atleast_1d(delta)

@@ -99,6 +99,11 @@ class Parameters:
                 f"compliance must be a Compliance, got {type(self.compliance).__name__}"
             )
 
+    @classmethod
+    def coerce(cls, k_or_params) -> Parameters:
+        """``k_or_params`` itself if it is a :class:`Parameters`, else ``Parameters(k_or_params)``."""
+        return k_or_params if isinstance(k_or_params, cls) else cls(k_or_params)
+
     @property
     def c(self) -> float:
         """The compliance ratio ``T/N`` per ``u_t/u_n``."""

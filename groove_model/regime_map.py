@@ -183,7 +183,7 @@ def classify_points(gamma, delta, k) -> np.ndarray:
         code[here & (upsilon > 0.0)] = _CODE[f"{name}_counterclockwise"]
     # On the axis the category follows gamma against arctan(k/c) alone: exactly there the
     # solver's T/N = tan gamma may round either way.
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     below = gamma <= params.gamma_limit
     code[axis & below] = _CODE["symmetric_no_rotation"]
     code[axis & ~below] = _CODE["double_sliding"]
@@ -210,7 +210,7 @@ def classify_grid(k, n: int = 400) -> RegimeGrid:
     ValueError
         If ``n`` or ``k`` is outside its allowed range.
     """
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     n = _check_resolution(n)
     axis = np.linspace(0.0, _HALF_PI, n + 1)
     G, D = np.meshgrid(axis, axis)
@@ -292,7 +292,7 @@ def dr_limit_no_roll_point(k):
     equations ``dr_limit`` and ``upsilon = 0`` with the analytic Jacobian of
     :mod:`groove_model.boundaries`; Brent's method on the line is the fallback.
     """
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     if params.k / params.c <= _SQRT2:
         return None
     target = math.atan2(params.c, params.k)  # beta_L with c cot beta_L = k
@@ -351,7 +351,7 @@ def seed_points(k) -> dict:
     of the double-rolling ``upsilon = 0`` line), ``(pi/4, pi/4)`` (end of both ``upsilon = 0``
     lines) and, for ``k > sqrt 2``, the point of the double-rolling limit where ``upsilon = 0``.
     """
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     points = {
         r"$(\arctan k,\,0)$": (params.gamma_limit, 0.0),
         r"$(\arctan\sqrt{2},\,0)$": (math.atan(_SQRT2), 0.0),
@@ -445,7 +445,7 @@ def draw_regime_map(ax, k, n: int = 600, boundaries: bool = True, degrees: bool 
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch, Polygon
 
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     n = _check_resolution(n)
     scale = 180.0 / math.pi if degrees else 1.0
     unit = "deg" if degrees else "rad"
@@ -576,7 +576,7 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
 
     from .export import atomic_write
 
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     formats = tuple(formats)
     bad = [f for f in formats if f not in ("png", "svg", "pdf")]
     if bad or not formats:

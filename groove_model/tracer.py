@@ -324,8 +324,9 @@ def _assemble(name: str, system: BoundarySystem, curve: Curve, keep_unphysical: 
             points.append(BoundarySpecialPoint(name, "end", x[last].copy(), float(s[last]),
                                                int(index_map[last]), note))
     points.sort(key=lambda p: (p.index, _PRIORITY[p.kind]))
-    residual = max((float(np.max(np.abs(BoundarySystem(name, system.params).residual(xi))))
-                    for xi in x[keep]), default=0.0)
+    # Certify the reported points in the x form of the equations (the form written to CSV).
+    in_x = BoundarySystem(name, system.params)
+    residual = max((float(np.max(np.abs(in_x.residual(xi)))) for xi in x[keep]), default=0.0)
     return BoundaryCurve(name=name, k=system.params.k, x=x[keep], s=s[keep],
                          physical=physical[keep], special_points=tuple(points),
                          status=curve.status.value if curve.ok else
@@ -383,7 +384,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     -------
     BoundarySet
     """
-    params = k if isinstance(k, Parameters) else Parameters(k)
+    params = Parameters.coerce(k)
     options = options or DEFAULT_OPTIONS
     if gamma_min is None:
         gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
