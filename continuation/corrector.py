@@ -13,6 +13,7 @@ import numpy as np
 from scipy.linalg.lapack import dgetrf, dgetrs
 
 from .problem import Evaluator
+from .small import all_finite, max_abs, norm
 
 __all__ = ["Correction", "correct", "hermite", "tangent_at"]
 
@@ -22,6 +23,10 @@ SINGULAR = "singular bordered Jacobian"
 DIVERGING = "Newton corrections not contracting"
 NO_CONVERGENCE = "no convergence within max_newton iterations"
 TOO_FAR = "Newton correction longer than max_correction"
+
+#: a chord step (old factors, no new Jacobian) is taken while it shrinks the
+#: correction at least this much; otherwise the Jacobian is re-evaluated
+CHORD_RATE = 0.1
 
 
 class Correction:
@@ -191,7 +196,7 @@ def correct(
         target = float(border @ x_pred)
     x = x_pred
     H = evaluator.residual(x) if residual is None else residual
-    if not np.isfinite(H).all():
+    if not all_finite(H):
         return Correction(False, NON_FINITE, x, None, 0.0, math.inf, 0, 0.0, 0.0)
     J = evaluator.jacobian(x) if jacobian is None else jacobian
     # one right-hand side per LAPACK call: with two, OpenBLAS's threaded triangular
@@ -213,21 +218,34 @@ def correct(
                           contraction if rate is None else rate)
 
     for k in range(max_newton + 1):
-        rnorm = float(np.abs(H).max()) if H.size else 0.0
+        rnorm = max_abs(H)
         if not rnorm < math.inf:
             return failure(NON_FINITE, math.inf, k)
+        scale = xtol * (1.0 + max_abs(x))
         if J is None:
-            # Simplified Newton step with the previous factors (Deuflhard's
-            # contraction monitor): if the residual and this estimate of the
-            # next correction are both small, x is accepted without a Jacobian.
+            # Chord step with the factors of an earlier iterate (Deuflhard's
+            # simplified Newton correction): it is taken while it contracts at
+            # least CHORD_RATE-fold, and it also estimates the distance to the curve
             rhs[: n1 - 1] = -H
             rhs[n1 - 1] = target - float(border @ x)
-            estimate = float(np.abs(dgetrs(factors[0], factors[1], rhs)[0]).max())
-            if rnorm <= tol and estimate <= xtol * (1.0 + float(np.abs(x).max())):
-                contraction = contraction or estimate / max(first, 1e-300)
+            dx = dgetrs(factors[0], factors[1], rhs)[0]
+            dnorm = max_abs(dx)
+            converged = rnorm <= tol and dnorm <= scale
+            if converged and not need_tangent:
+                contraction = contraction or dnorm / max(first, 1e-300)
                 return Correction(True, "", x, None, 0.0, rnorm, k, first, contraction)
+            if not converged and dnorm <= CHORD_RATE * previous and k < max_newton:
+                if k == 1:
+                    contraction = dnorm / max(previous, 1e-300)
+                length = norm(dx)
+                if length > max_correction:
+                    return failure(TOO_FAR, rnorm, k)
+                previous = dnorm
+                x = x + dx
+                H = evaluator.residual(x)
+                continue
             J = evaluator.jacobian(x)
-        if not np.isfinite(J).all():
+        if not all_finite(J):
             return failure(NON_FINITE, rnorm, k)
         factors = _factor(J, border)
         if factors is None:
@@ -235,18 +253,18 @@ def correct(
         rhs[: n1 - 1] = -H
         rhs[n1 - 1] = target - float(border @ x)
         dx = dgetrs(factors[0], factors[1], rhs)[0]
-        dnorm = float(np.abs(dx).max())
+        dnorm = max_abs(dx)
         if not dnorm < math.inf:
             return failure(SINGULAR, rnorm, k)
-        small = dnorm <= xtol * (1.0 + float(np.abs(x).max()))
-        length = math.sqrt(float(dx @ dx))
+        small = dnorm <= scale
+        length = norm(dx)
         if k == 0:
             first = length
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
         if rnorm <= tol:
             v = dgetrs(factors[0], factors[1], unit)[0]
-            vnorm = math.sqrt(float(v @ v))
+            vnorm = norm(v)
             border_det = _signed_det(*factors)
             converged = Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
                                    contraction, border_det)
@@ -262,7 +280,7 @@ def correct(
         previous = dnorm
         x = x + dx
         H = evaluator.residual(x)
-        J = evaluator.jacobian(x) if need_tangent else None
+        J = None
     return failure(NO_CONVERGENCE, rnorm, max_newton)
 
 
@@ -286,7 +304,7 @@ def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):
         ``det [H'(x); t^T]``.
     """
     J = evaluator.jacobian(x)
-    if not np.isfinite(J).all():
+    if not all_finite(J):
         return None, 0.0
     factors = _factor(J, border)
     if factors is None:
@@ -294,7 +312,7 @@ def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):
     rhs = np.zeros(x.size)
     rhs[-1] = 1.0
     v, _ = dgetrs(factors[0], factors[1], rhs)
-    vnorm = float(np.linalg.norm(v))
+    vnorm = norm(v)
     if not 0 < vnorm < math.inf:
         return None, 0.0
     return v / vnorm, vnorm * _signed_det(*factors)

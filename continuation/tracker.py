@@ -17,6 +17,7 @@ from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
 from .events import Event, Located, LocateError, crossed, locate_zero, refine_branch_point
 from .options import Options
 from .problem import Evaluator, Problem
+from .small import norm
 from .result import ContinuationError, Curve, SpecialPoint, Status
 
 __all__ = ["trace"]
@@ -160,11 +161,11 @@ def trace(
     Notes
     -----
     Predictor: the Euler step ``x + h t`` on the first step, afterwards the
-    quadratic ``x + h t + h^2 c / 2`` with the curvature estimate
-    ``c = (t_k - t_(k-1)) / h_(k-1)``, whose error is ``O(h^3)`` (Allgower &
+    cubic Hermite arc of the last step extrapolated by ``h`` (its Taylor form at
+    the last point, :func:`_extrapolate`), whose error is ``O(h^4)`` (Allgower &
     Georg, sec. 6.1 and 7.1). Corrector: Newton on Keller's bordered system
     with the hyperplane through the prediction normal to the predicted
-    tangent (:func:`continuation.corrector.correct`).
+    tangent, the arc's unit tangent there (:func:`continuation.corrector.correct`).
 
     Step control (Allgower & Georg, sec. 6.1; Den Heijer & Rheinboldt 1981):
     with the contraction rate ``kappa`` of the first two Newton corrections,
@@ -177,7 +178,7 @@ def trace(
                         (\\delta/\\tilde\\delta)^{1/p}, \\alpha/\\tilde\\alpha\\right),
         \\qquad h_{new} = h / \\mathrm{clip}(f, 1/2, 2),
 
-    where ``p`` is the order of the predictor error (2 Euler, 3 quadratic).
+    where ``p`` is the order of the predictor error (2 Euler, 3 or 4 extrapolated).
     A step exceeding a limit, or whose corrector fails, is rejected and halved.
 
     The arclength of a step is its chord corrected by the angle ``alpha``
@@ -226,7 +227,7 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
 
     point = start
     ds = options.ds
-    curvature = None
+    previous = None
     steps = 0
     failure = ""
     status = None
@@ -237,15 +238,12 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         h = min(ds, options.max_arclength - point.s)
 
         # predict
-        if curvature is None:
+        if previous is None:
             x_pred = point.x + h * point.tangent
             border = point.tangent
             order = 2
         else:
-            x_pred = point.x + h * point.tangent + (0.5 * h * h) * curvature
-            border = point.tangent + h * curvature
-            border = border / math.sqrt(float(border @ border))
-            order = 3
+            x_pred, border, order = _extrapolate(previous, point, h)
 
         # correct
         correction = correct(evaluator, x_pred, border, tol=options.tol, xtol=options.tol,
@@ -277,7 +275,6 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         new = _Point(correction.x, point.s + length, correction.tangent, correction.det,
                      correction.residual, correction.iterations,
                      run.event_values(correction.x))
-        new_curvature = (new.tangent - point.tangent) / length
         truncated = h >= options.max_arclength - point.s
         if truncated and new.s != options.max_arclength:
             new = _point_at_arclength(run, point, new, options.max_arclength)
@@ -299,8 +296,10 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         # adapt
         ds = min(options.ds_max, h * _step_multiplier(correction, alpha, order, options))
         ds = max(ds, options.ds_min)
+        # a singular start (det 0) carries a given tangent, not a computed null vector,
+        # whose error the cubic predictor would amplify: it is no Hermite node
+        previous = point if point.det != 0.0 else None
         point = new
-        curvature = new_curvature
     return run.curve(status, message, n1)
 
 
@@ -389,6 +388,45 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
     point = _Point(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations,
                    run.event_values(x))
     return point, None, ""
+
+
+def _extrapolate(a: _Point, b: _Point, h: float):
+    """Predicted point and border ``h`` beyond ``b`` on the cubic Hermite arc of step ``a -> b``.
+
+    The arc is written as its Taylor expansion at ``b`` (the same cubic, but rounding in
+    the nodes is not amplified by the extrapolation),
+
+    .. math::
+
+        p(h) = x_b + h t_b + \\frac{h^2}{2} c + \\frac{h^3}{6} j, \\qquad
+        c = \\frac{6 (x_a - x_b)}{H^2} + \\frac{2 t_a + 4 t_b}{H}, \\qquad
+        j = \\frac{12 (x_a - x_b)}{H^3} + \\frac{6 (t_a + t_b)}{H^2},
+
+    with ``H = s_b - s_a``; its error is ``O(h^4)`` (order 4) against ``O(h^3)`` for the
+    quadratic predictor with ``c = (t_b - t_a) / H``. For ``h > 2 H`` the cubic term, whose
+    node errors grow as ``(h / H)^3``, is dropped (order 3).
+
+    Collected by node with ``u = h / H`` and ``w = u`` (``w = 0`` without the cubic term),
+    the prediction and the (unnormalised) border are two rows of weights on the nodes,
+
+    .. math::
+
+        p = x_b + u^2 (3 + 2 w) (x_a - x_b) + H u^2 (1 + w) t_a + (h + H u^2 (2 + w)) t_b,
+
+        p' H \\propto 6 u (1 + w) (x_a - x_b) + H u (2 + 3 w) t_a + H (1 + u (4 + 3 w)) t_b,
+
+    evaluated as one 2 x 3 by 3 x (n + 1) product.
+    """
+    span = b.s - a.s
+    u = h / span
+    order, w = (4, u) if h <= 2.0 * span else (3, 0.0)
+    nodes = np.array((a.x - b.x, a.tangent, b.tangent))
+    weights = np.array(((u * u * (3.0 + 2.0 * w), span * u * u * (1.0 + w),
+                         h + span * u * u * (2.0 + w)),
+                        (6.0 * u * (1.0 + w), span * u * (2.0 + 3.0 * w),
+                         span * (1.0 + u * (4.0 + 3.0 * w)))))
+    step, border = weights @ nodes
+    return b.x + step, border / norm(border), order
 
 
 def _svd(J: np.ndarray):

@@ -188,21 +188,25 @@ def test_grid_changes_only_within_one_step_of_a_traced_boundary(k, along_rows, t
 def _on_curve_points(bs, name, k):
     """The traced points of a curve and, between each pair, a point projected onto the curve.
 
-    The midpoint of two traced points (in ``x = (gamma, delta, beta_L, upsilon)``) is moved onto
+    The midpoint of two traced points (in ``w = (gamma, delta, sqrt(beta_L), upsilon)``) is moved onto
     the boundary by Gauss-Newton with the minimum-norm step ``-J^+ H`` and kept if its residual
     is below 1e-12, so the sides are checked densely even where the tracer takes long steps.
     """
     curve = bs.curves[name]
     x = curve.x[np.asarray(curve.physical, bool)]
-    system = boundary_system(name, k)
+    # the sqrt(beta_L) chart: smooth where beta_L -> 0, which the beta_L chart is not
+    system = boundary_system(name, k, chart="sqrt_beta_L")
     points = [x[0]]
     for a, b in zip(x[:-1], x[1:]):
-        y = 0.5 * (a + b)
+        y = 0.5 * (system.from_x(a) + system.from_x(b))
         for _ in range(8):
             H, J = system.residual_and_jacobian(y)
+            if not (np.isfinite(H).all() and np.isfinite(J).all()):
+                break
             y = y - np.linalg.lstsq(J, H, rcond=None)[0]
-        if np.max(np.abs(system.residual(y))) <= 1e-12 and system.is_physical(y):
-            points.append(y)
+        if (np.isfinite(y).all() and np.max(np.abs(system.residual(y))) <= 1e-12
+                and system.is_physical(y)):
+            points.append(system.to_x(y))
         points.append(b)
     return np.array(points)
 
