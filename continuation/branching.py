@@ -27,6 +27,10 @@ BRANCH_POINT_RATIO = 1e-6
 #: step off an exactly singular point, relative to 1 + max|x|
 STEP_OFF = 1e-3
 
+#: a given point on the curve whose Jacobian has a smallest-to-largest singular
+#: value ratio below this is taken as the branch point itself (rounding level)
+EXACT_RATIO = 64 * _EPS
+
 
 def branch_tangents(problem: Problem, x_bp: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Return the unit tangents of the two branches through a simple branch point.
@@ -186,6 +190,29 @@ def _locate_branch_point(evaluator, problem, x_approx, options, radius):
     return replace(best, index=0, s=0.0)
 
 
+def _exact_branch_point(evaluator: Evaluator, x: np.ndarray, options: Options) -> float | None:
+    """Whether ``x`` is a branch point to rounding: its accuracy estimate, else ``None``.
+
+    ``x`` qualifies if ``max |H(x)| <= tol`` and the singular values of ``H'(x)`` have
+    ``sigma_min <= EXACT_RATIO sigma_max``. Near a simple branch point ``sigma_min``
+    grows linearly with the distance to it, so ``(sigma_min / sigma_max) (1 + max|x|)``
+    estimates that distance (the reported accuracy).
+    """
+    H = evaluator.residual(x)
+    if not (np.isfinite(H).all() and float(np.max(np.abs(H))) <= options.tol):
+        return None
+    J = evaluator.jacobian(x)
+    if not np.isfinite(J).all():
+        return None
+    singular_values = np.linalg.svd(J, compute_uv=False)
+    if not singular_values[0] > 0:
+        return None
+    ratio = float(singular_values[-1] / singular_values[0])
+    if ratio > EXACT_RATIO:
+        return None
+    return ratio * (1.0 + float(np.max(np.abs(x))))
+
+
 def _project(evaluator: Evaluator, x: np.ndarray, options: Options) -> np.ndarray:
     """Gauss-Newton projection of ``x`` onto ``H = 0`` with minimal-norm steps."""
     x = x.copy()
@@ -221,7 +248,11 @@ def switch_branch(
     x_bp : SpecialPoint or array_like of shape (n + 1,)
         A branch point from ``Curve.special('branch_point')`` (its tangent is
         the current branch), or an approximate (or exact) branch point, which
-        is located first with :func:`locate_branch_point`.
+        is located first with :func:`locate_branch_point`. An array that is
+        already a branch point to rounding (``max |H| <= tol`` and
+        ``sigma_min(H') <= 64 eps sigma_max(H')``) is used as it is when the
+        branch is chosen by a ``direction`` array, ``tangent_hint`` or
+        ``branch``.
     direction : {None, 1, -1} or array_like of shape (n + 1,), optional
         Orientation of the new branch: ``None``/``+1`` along its tangent
         normalised so that its largest-magnitude component is positive, ``-1``
@@ -271,12 +302,20 @@ def switch_branch(
     if isinstance(x_bp, SpecialPoint):
         x, accuracy, hint = x_bp.x.copy(), x_bp.accuracy, x_bp.tangent
     else:
-        located = _locate_branch_point(evaluator, problem, _as_vector("x_bp", x_bp), options,
-                                       None)
-        # the branch the search happened to run along is a guess of the current
-        # one; a direction array is the caller's explicit choice and wins
-        x, accuracy = located.x, located.accuracy
-        hint = located.tangent if reference is None else None
+        x_given = _as_vector("x_bp", x_bp)
+        exact = None
+        if reference is not None or tangent_hint is not None or branch is not None:
+            # the branch is chosen without the search's branch, so an exact
+            # branch point (e.g. an analytic one) needs no search
+            exact = _exact_branch_point(evaluator, x_given, options)
+        if exact is not None:
+            x, accuracy, hint = x_given.copy(), exact, None
+        else:
+            located = _locate_branch_point(evaluator, problem, x_given, options, None)
+            # the branch the search happened to run along is a guess of the current
+            # one; a direction array is the caller's explicit choice and wins
+            x, accuracy = located.x, located.accuracy
+            hint = located.tangent if reference is None else None
     if reference is not None and reference.shape != x.shape:
         raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, got "
                          f"{direction!r}")

@@ -80,11 +80,12 @@ def _left_contact(var: float, chart: str):
     return w2, var * r, 2.0 * var, math.cos(w2) / r
 
 
-def _rows(x, k, c, system, chart="beta_L"):
+def _rows(x, k, c, system, chart="beta_L", jacobian=True):
     """Residual (3,) and Jacobian (3, 4) of one boundary system at ``x``; see module table.
 
     The third coordinate of ``x`` is ``beta_L`` or ``w = sqrt(beta_L)`` (``chart``); its column
-    is assembled from ``d beta_L`` (``b1``) and ``d q_L`` (``dq_L``) by the product rule.
+    is assembled from ``d beta_L`` (``b1``) and ``d q_L`` (``dq_L``) by the product rule. With
+    ``jacobian=False`` only the residual is computed (the rows are ``None``).
     """
     gamma, delta, upsilon = float(x[0]), float(x[1]), float(x[3])
     beta_L, q_L, b1, dq_L = _left_contact(float(x[2]), chart)
@@ -94,10 +95,21 @@ def _rows(x, k, c, system, chart="beta_L"):
     n_L, n_R = s_L * q_L, s_R * q_R
     A, B = c_L + upsilon, c_R - upsilon
     theta_L, theta_R = gamma + delta, gamma - delta
-    sin_tL, cos_tL, sin_tR, cos_tR = (math.sin(theta_L), math.cos(theta_L),
-                                      math.sin(theta_R), math.cos(theta_R))
-    sin_g, cos_g, sin_d, cos_d = math.sin(gamma), math.cos(gamma), math.sin(delta), math.cos(delta)
+    sin_tL, sin_tR = math.sin(theta_L), math.sin(theta_R)
+    sin_g, sin_d = math.sin(gamma), math.sin(delta)
     D = 2.0 * sin_g * sin_d
+    dr = system.startswith("dr")
+    if dr:
+        values = [q_L * A - q_R * B, n_L * sin_tL - n_R * sin_tR + c * q_L * A * D]
+    else:
+        values = [c * q_R * B - k * n_L, n_L * (sin_tL + k * D) - n_R * sin_tR]
+    limit = system.endswith("limit")
+    values.append(c * A - k * s_L if limit else upsilon)
+    if not jacobian:
+        return values, None
+
+    cos_tL, cos_tR = math.cos(theta_L), math.cos(theta_R)
+    cos_g, cos_d = math.cos(gamma), math.cos(delta)
     D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
     # beta_R = pi - 2 gamma - beta_L: d/d gamma = -2, d/d(chart variable) = -b1.
     qR_beta = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf  # d q_R / d beta_L
@@ -106,31 +118,20 @@ def _rows(x, k, c, system, chart="beta_L"):
     dA, dB, ds_L = -s_L * b1, s_R * b1, c_L * b1
     dn_L = ds_L * q_L + s_L * dq_L
     dq_R, dn_R = qR_beta * b1, nR_beta * b1
-
-    rows, values = [], []
-    if system.startswith("dr"):
-        values.append(q_L * A - q_R * B)
-        rows.append((-(2.0 * qR_beta * B + 2.0 * q_R * s_R), 0.0,
-                     dq_L * A + q_L * dA - dq_R * B - q_R * dB, q_L + q_R))
-        values.append(n_L * sin_tL - n_R * sin_tR + c * q_L * A * D)
-        rows.append((n_L * cos_tL - 2.0 * nR_beta * sin_tR - n_R * cos_tR + c * q_L * A * D_g,
-                     n_L * cos_tL + n_R * cos_tR + c * q_L * A * D_d,
-                     dn_L * sin_tL - dn_R * sin_tR + c * D * (dq_L * A + q_L * dA),
-                     c * q_L * D))
+    if dr:
+        rows = [(-(2.0 * qR_beta * B + 2.0 * q_R * s_R), 0.0,
+                 dq_L * A + q_L * dA - dq_R * B - q_R * dB, q_L + q_R),
+                (n_L * cos_tL - 2.0 * nR_beta * sin_tR - n_R * cos_tR + c * q_L * A * D_g,
+                 n_L * cos_tL + n_R * cos_tR + c * q_L * A * D_d,
+                 dn_L * sin_tL - dn_R * sin_tR + c * D * (dq_L * A + q_L * dA),
+                 c * q_L * D)]
     else:
-        values.append(c * q_R * B - k * n_L)
-        rows.append((c * (2.0 * qR_beta * B + 2.0 * q_R * s_R), 0.0,
-                     c * (dq_R * B + q_R * dB) - k * dn_L, -c * q_R))
-        values.append(n_L * (sin_tL + k * D) - n_R * sin_tR)
-        rows.append((n_L * (cos_tL + k * D_g) - 2.0 * nR_beta * sin_tR - n_R * cos_tR,
-                     n_L * (cos_tL + k * D_d) + n_R * cos_tR,
-                     dn_L * (sin_tL + k * D) - dn_R * sin_tR, 0.0))
-    if system.endswith("limit"):
-        values.append(c * A - k * s_L)
-        rows.append((0.0, 0.0, c * dA - k * ds_L, c))
-    else:
-        values.append(upsilon)
-        rows.append((0.0, 0.0, 0.0, 1.0))
+        rows = [(c * (2.0 * qR_beta * B + 2.0 * q_R * s_R), 0.0,
+                 c * (dq_R * B + q_R * dB) - k * dn_L, -c * q_R),
+                (n_L * (cos_tL + k * D_g) - 2.0 * nR_beta * sin_tR - n_R * cos_tR,
+                 n_L * (cos_tL + k * D_d) + n_R * cos_tR,
+                 dn_L * (sin_tL + k * D) - dn_R * sin_tR, 0.0)]
+    rows.append((0.0, 0.0, c * dA - k * ds_L, c) if limit else (0.0, 0.0, 0.0, 1.0))
     return values, rows
 
 
@@ -188,7 +189,8 @@ class BoundarySystem:
 
     def residual(self, x) -> np.ndarray:
         """``H(x)``, shape (3,)."""
-        values, _ = _rows(x, self.params.k, self.params.c, self.name, self.chart)
+        values, _ = _rows(x, self.params.k, self.params.c, self.name, self.chart,
+                          jacobian=False)
         return np.array(values)
 
     def jacobian(self, x) -> np.ndarray:

@@ -28,8 +28,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
+from scipy.linalg.lapack import dgesv
 
 from continuation import Curve, Event, Options, Problem, switch_branch, trace
+from continuation.small import all_finite, max_abs, norm
 
 from .boundaries import (
     BOUNDARY_NAMES,
@@ -59,10 +61,11 @@ SPECIAL_POINT_COLUMNS = ("boundary", "k", "kind", "gamma", "delta", "beta_L", "u
 SPECIAL_KINDS = ("start", "end", "junction", "fold_gamma", "branch_point")
 _PRIORITY = {"branch_point": 0, "junction": 1, "fold_gamma": 2, "start": 3, "end": 4}
 
-#: Engine settings for the boundaries: residuals to 1e-11 (rounding noise in H reaches ~4e-12
-#: where |J| ~ 2e4), so CSV rows recomputed from their 17-digit columns satisfy the equations
-#: to 1e-10; steps small enough for smooth plots.
-DEFAULT_OPTIONS = Options(tol=1e-11, ds=0.02, ds_min=1e-12, ds_max=0.05, max_steps=5000,
+#: Engine settings for the boundaries: residuals to 1e-12 (so that rs_limit and dr_limit, two
+#: systems for one curve, agree to about 1e-12); CSV rows recomputed from their 17-digit columns
+#: satisfy the equations to 1e-10 (rounding of the columns is amplified where |J| ~ 2e4); steps
+#: small enough for smooth plots.
+DEFAULT_OPTIONS = Options(tol=1e-12, ds=0.02, ds_min=1e-12, ds_max=0.05, max_steps=5000,
                           fold_coordinates=(0,), detect_branch_points=False, detect_closed=False)
 GAMMA_MIN = 1e-3
 
@@ -338,7 +341,9 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     """Largest distance from a point of ``rs_limit`` to the curve ``dr_limit``.
 
     Each point is projected onto ``dr_limit`` by Gauss-Newton with the minimum-norm step
-    ``dx = -J^+ H`` (the projection to first order), in the smooth chart.
+    ``dx = -J^T (J J^T)^{-1} H`` in the smooth chart. The first step is the distance to first
+    order, with an error of order ``|dx|^2`` (times the curvature of ``H = 0``): once it is
+    below ``1e-8`` that error is below rounding and the iteration stops.
     """
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     worst = 0.0
@@ -346,13 +351,16 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
         y = system.from_x(x)
         for _ in range(20):
             H, J = system.residual_and_jacobian(y)
-            step = J.T @ np.linalg.solve(J @ J.T, H)  # minimum-norm solution of J step = H
+            _, _, multipliers, info = dgesv(J @ J.T, H)
+            if info != 0 or not all_finite(multipliers):
+                return math.nan  # rank-deficient: no distance is claimed
+            step = J.T @ multipliers
             y = y - step
-            if np.linalg.norm(step) <= 1e-13 * (1.0 + np.linalg.norm(y)):
+            if norm(step) <= 1e-8 * (1.0 + max_abs(y)):
                 break
         else:
             return math.nan  # not converged: no distance is claimed
-        worst = max(worst, float(np.linalg.norm(system.to_x(y) - x)))
+        worst = max(worst, norm(system.to_x(y) - x))
     return worst
 
 
@@ -373,7 +381,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         Keep the parts of each boundary where its regime is not valid (flagged).
     options : continuation.Options, optional
         Engine settings; the default (:data:`DEFAULT_OPTIONS`) resolves the curves for plotting
-        with residuals <= 1e-11.
+        with residuals <= 1e-12.
     gamma_min : float, optional
         Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
         ``min(1e-3, arctan(k) / 100)``.
