@@ -205,9 +205,8 @@ def _exact_branch_point(evaluator: Evaluator, x: np.ndarray, options: Options) -
     if not np.isfinite(J).all():
         return None
     singular_values = np.linalg.svd(J, compute_uv=False)
-    if not singular_values[0] > 0:
-        return None
-    ratio = float(singular_values[-1] / singular_values[0])
+    # H' = 0 (e.g. a pitchfork in one equation) is as singular as it gets
+    ratio = float(singular_values[-1] / singular_values[0]) if singular_values[0] > 0 else 0.0
     if ratio > EXACT_RATIO:
         return None
     return ratio * (1.0 + float(np.max(np.abs(x))))

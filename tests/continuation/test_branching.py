@@ -99,6 +99,20 @@ def test_switch_branch_at_an_exact_point_chooses_by_direction(pitchfork, directi
         assert np.max(np.abs(curve.x[:, 1])) <= 1e-10
 
 
+def test_an_exact_branch_point_is_used_as_given_and_an_inexact_one_is_located(pitchfork):
+    # (0, 0) is the branch point exactly: no search, so only the check and the tangents
+    # cost evaluations; a point 1e-6 away is located by tracing through it
+    exact = switch_branch(pitchfork, [0.0, 0.0], direction=[0.0, 1.0], options=OPTIONS)
+    near = switch_branch(pitchfork, [1e-6, 0.0], direction=[0.0, 1.0], options=OPTIONS)
+    for curve in (exact, near):
+        start = curve.special_points[0]
+        assert start.kind == "branch_point" and np.max(np.abs(start.x)) <= 1e-12
+        assert np.max(np.abs(curve.x[1:, 0] - curve.x[1:, 1] ** 2)) <= 1e-9
+    assert exact.special_points[0].accuracy == 0.0
+    assert np.array_equal(exact.x[0], [0.0, 0.0])
+    assert exact.jacobian_evals < near.jacobian_evals - 10
+
+
 def test_switch_branch_from_the_exact_singular_point(pitchfork):
     point = locate_branch_point(pitchfork, [0.0, 0.0])
     assert np.max(np.abs(point.x)) <= 1e-10
