@@ -27,6 +27,9 @@ logger = logging.getLogger(__name__)
 #: relative size of the smallest singular value below which a Jacobian is singular
 SINGULAR_RATIO = 1e-8
 
+#: accepted points interpolated by the predictor (3: quintic Hermite)
+PREDICTOR_NODES = 3
+
 #: a closing point must lie this close (relative to 1 + max|x0|) to the start
 CLOSE_TOLERANCE = 1e-6
 
@@ -161,11 +164,15 @@ def trace(
     Notes
     -----
     Predictor: the Euler step ``x + h t`` on the first step, afterwards the
-    cubic Hermite arc of the last step extrapolated by ``h`` (its Taylor form at
-    the last point, :func:`_extrapolate`), whose error is ``O(h^4)`` (Allgower &
-    Georg, sec. 6.1 and 7.1). Corrector: Newton on Keller's bordered system
-    with the hyperplane through the prediction normal to the predicted
-    tangent, the arc's unit tangent there (:func:`continuation.corrector.correct`).
+    Hermite interpolant of the last two or three accepted points (positions
+    and tangents) extrapolated by ``h`` (:func:`_extrapolate`): a cubic with
+    error ``O(h^4)`` on the second step, then a quintic with error ``O(h^6)``
+    (variable-order predictors: Lundberg & Poore 1991; Allgower & Georg,
+    sec. 6.1 and 7.1). A higher-order prediction lands so close to the curve
+    that one Newton step usually reaches the tolerance. Corrector: Newton on
+    Keller's bordered system with the hyperplane through the prediction
+    normal to the predicted tangent (:func:`continuation.corrector.correct`),
+    with chord steps while they contract fast.
 
     Step control (Allgower & Georg, sec. 6.1; Den Heijer & Rheinboldt 1981):
     with the contraction rate ``kappa`` of the first two Newton corrections,
@@ -178,7 +185,7 @@ def trace(
                         (\\delta/\\tilde\\delta)^{1/p}, \\alpha/\\tilde\\alpha\\right),
         \\qquad h_{new} = h / \\mathrm{clip}(f, 1/2, 2),
 
-    where ``p`` is the order of the predictor error (2 Euler, 3 or 4 extrapolated).
+    where ``p`` is the order of the predictor error (2 Euler, 3 to 6 extrapolated).
     A step exceeding a limit, or whose corrector fails, is rejected and halved.
 
     The arclength of a step is its chord corrected by the angle ``alpha``
@@ -227,7 +234,8 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
 
     point = start
     ds = options.ds
-    previous = None
+    # the accepted points the predictor interpolates, oldest first
+    nodes: list[_Point] = []
     steps = 0
     failure = ""
     status = None
@@ -238,12 +246,12 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         h = min(ds, options.max_arclength - point.s)
 
         # predict
-        if previous is None:
+        if nodes:
+            x_pred, border, order = _extrapolate((*nodes, point), h)
+        else:
             x_pred = point.x + h * point.tangent
             border = point.tangent
             order = 2
-        else:
-            x_pred, border, order = _extrapolate(previous, point, h)
 
         # correct
         correction = correct(evaluator, x_pred, border, tol=options.tol, xtol=options.tol,
@@ -297,8 +305,8 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         ds = min(options.ds_max, h * _step_multiplier(correction, alpha, order, options))
         ds = max(ds, options.ds_min)
         # a singular start (det 0) carries a given tangent, not a computed null vector,
-        # whose error the cubic predictor would amplify: it is no Hermite node
-        previous = point if point.det != 0.0 else None
+        # whose error the extrapolation would amplify: it is no Hermite node
+        nodes = [*nodes[-(PREDICTOR_NODES - 2):], point] if point.det != 0.0 else []
         point = new
     return run.curve(status, message, n1)
 
@@ -390,43 +398,68 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
     return point, None, ""
 
 
-def _extrapolate(a: _Point, b: _Point, h: float):
-    """Predicted point and border ``h`` beyond ``b`` on the cubic Hermite arc of step ``a -> b``.
+def _extrapolate(nodes: Sequence[_Point], h: float):
+    """Prediction ``h`` beyond the last node on the Hermite interpolant of the nodes.
 
-    The arc is written as its Taylor expansion at ``b`` (the same cubic, but rounding in
-    the nodes is not amplified by the extrapolation),
+    Returns ``(x_pred, border, order)``: the point, the unit tangent of the
+    interpolant there (the border row of the corrector) and the order of the
+    prediction error.
 
-    .. math::
-
-        p(h) = x_b + h t_b + \\frac{h^2}{2} c + \\frac{h^3}{6} j, \\qquad
-        c = \\frac{6 (x_a - x_b)}{H^2} + \\frac{2 t_a + 4 t_b}{H}, \\qquad
-        j = \\frac{12 (x_a - x_b)}{H^3} + \\frac{6 (t_a + t_b)}{H^2},
-
-    with ``H = s_b - s_a``; its error is ``O(h^4)`` (order 4) against ``O(h^3)`` for the
-    quadratic predictor with ``c = (t_b - t_a) / H``. For ``h > 2 H`` the cubic term, whose
-    node errors grow as ``(h / H)^3``, is dropped (order 3).
-
-    Collected by node with ``u = h / H`` and ``w = u`` (``w = 0`` without the cubic term),
-    the prediction and the (unnormalised) border are two rows of weights on the nodes,
+    Notes
+    -----
+    With ``m`` nodes ``(s_j, x_j, t_j)``, the last one ``b``, and the variable
+    ``sigma = (s - s_b) / H`` (``H`` the last span, nodes at ``z_j``), the
+    interpolant of degree ``2m - 1`` matching every ``x_j`` and ``t_j`` is
 
     .. math::
 
-        p = x_b + u^2 (3 + 2 w) (x_a - x_b) + H u^2 (1 + w) t_a + (h + H u^2 (2 + w)) t_b,
+        p(\\sigma) = \\sum_j \\left[1 - 2 L_j'(z_j) (\\sigma - z_j)\\right]
+                     L_j(\\sigma)^2 \\, x_j
+                   + (\\sigma - z_j) L_j(\\sigma)^2 \\, H t_j,
 
-        p' H \\propto 6 u (1 + w) (x_a - x_b) + H u (2 + 3 w) t_a + H (1 + u (4 + 3 w)) t_b,
-
-    evaluated as one 2 x 3 by 3 x (n + 1) product.
+    with the Lagrange polynomials ``L_j`` of the nodes (the Hermite basis,
+    e.g. Stoer & Bulirsch, *Introduction to Numerical Analysis*, sec. 2.1.5).
+    Its weights at ``sigma = u = h / H``, and those of ``p'(u)``, are a few
+    scalar products and sums, so the prediction is one small matrix product
+    with the node vectors. With two nodes this is the cubic Hermite arc of
+    the last step (order 4), with three the quintic (order 6). Beyond twice
+    the last span (``u > 2``) the node errors would be amplified as
+    ``u^(2m-1)``: only the quadratic Taylor part of the last step's cubic at
+    ``b`` is kept, ``x_b + h t_b + h^2 c / 2`` with
+    ``c = 6 (x_a - x_b) / H^2 + (2 t_a + 4 t_b) / H`` (order 3).
     """
-    span = b.s - a.s
+    b = nodes[-1]
+    span = b.s - nodes[-2].s
     u = h / span
-    order, w = (4, u) if h <= 2.0 * span else (3, 0.0)
-    nodes = np.array((a.x - b.x, a.tangent, b.tangent))
-    weights = np.array(((u * u * (3.0 + 2.0 * w), span * u * u * (1.0 + w),
-                         h + span * u * u * (2.0 + w)),
-                        (6.0 * u * (1.0 + w), span * u * (2.0 + 3.0 * w),
-                         span * (1.0 + u * (4.0 + 3.0 * w)))))
-    step, border = weights @ nodes
-    return b.x + step, border / norm(border), order
+    if u > 2.0:
+        a = nodes[-2]
+        q = 3.0 * u * u
+        weights = ((1.0 - q, h + 2.0 * span * u * u, q, span * u * u),
+                   (-6.0 * u / span, 1.0 + 4.0 * u, 6.0 * u / span, 2.0 * u))
+        vectors = (b.x, b.tangent, a.x, a.tangent)
+        order = 3
+    else:
+        z = [(node.s - b.s) / span for node in nodes]
+        values, slopes, vectors = [], [], []
+        for j, node in enumerate(nodes):
+            # L_j(u), L_j'(u) / L_j(u) and L_j'(z_j) from the other nodes
+            lagrange, log_slope, at_node = 1.0, 0.0, 0.0
+            for i, z_i in enumerate(z):
+                if i != j:
+                    lagrange *= (u - z_i) / (z[j] - z_i)
+                    log_slope += 1.0 / (u - z_i)
+                    at_node += 1.0 / (z[j] - z_i)
+            offset = u - z[j]
+            square = lagrange * lagrange
+            d_square = 2.0 * square * log_slope
+            values += [(1.0 - 2.0 * at_node * offset) * square, span * offset * square]
+            slopes += [-2.0 * at_node * square + (1.0 - 2.0 * at_node * offset) * d_square,
+                       span * (square + offset * d_square)]
+            vectors += [node.x, node.tangent]
+        weights = (values, slopes)
+        order = 2 * len(nodes)
+    x_pred, border = np.array(weights) @ np.array(vectors)
+    return x_pred, border / norm(border), order
 
 
 def _svd(J: np.ndarray):

@@ -51,6 +51,13 @@ def test_ours_is_ok_and_locates_folds_to_1e_10(records):
             assert record.points > 0 and record.residual_evals >= record.points
 
 
+def test_ours_needs_at_most_five_evaluations_per_point_on_the_standard_problems(records):
+    # the target, counting a residual and a Jacobian as two evaluations
+    for record in records:
+        if record.problem in ("cubic", "circle"):
+            assert (record.residual_evals + record.jacobian_evals) / record.points <= 5.0
+
+
 def test_baselines_report_their_accuracy(records):
     by_tool = {r.tool: r for r in records if r.problem == "groove_k1"}
     assert "error against our curve" in by_tool["fsolve_natural"].note
