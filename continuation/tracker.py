@@ -30,6 +30,9 @@ SINGULAR_RATIO = 1e-8
 #: accepted points interpolated by the predictor (3: quintic Hermite)
 PREDICTOR_NODES = 3
 
+#: components of a singular start's tangent at most this large are taken as zero
+BRANCH_TANGENT_NOISE = 1e-7
+
 #: a closing point must lie this close (relative to 1 + max|x0|) to the start
 CLOSE_TOLERANCE = 1e-6
 
@@ -605,8 +608,14 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
             locate(lambda c, f=event.function: f(c.x), a.events[j], b.events[j], False,
                    "event", event.name, terminal=event.terminal)
     for i in options.fold_coordinates:
-        if crossed(float(a.tangent[i]), float(b.tangent[i])):
-            locate(lambda c, i=i: c.tangent[i], float(a.tangent[i]), float(b.tangent[i]),
+        t_a = float(a.tangent[i])
+        if a.det == 0.0 and abs(t_a) <= BRANCH_TANGENT_NOISE:
+            # a singular start's tangent (a branch tangent from the algebraic
+            # bifurcation equation) is accurate to about this: its tiny component
+            # is a zero at the start, which is no crossing of this step
+            t_a = 0.0
+        if crossed(t_a, float(b.tangent[i])):
+            locate(lambda c, i=i: c.tangent[i], t_a, float(b.tangent[i]),
                    True, "fold", f"fold {run.problem.coordinate_name(i)}", coordinate=i)
     if options.detect_branch_points and crossed(a.det, b.det):
         # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at

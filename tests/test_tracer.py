@@ -136,6 +136,17 @@ def test_sweep_every_expected_boundary_without_failure(k):
     assert bs.curves["rs_no_roll"].x[-1, :2] == pytest.approx(CORNER, abs=1e-10)
     assert bs.limit_distance <= 1e-9
     assert_on_curve(bs)
+    assert_folds_turn_back_in_gamma(bs)
+
+
+def assert_folds_turn_back_in_gamma(bs):
+    """Every reported fold in gamma is a strict local extremum of gamma along its curve."""
+    for curve in bs.curves.values():
+        for fold in curve.special("fold_gamma"):
+            i = fold.index
+            assert 0 < i < len(curve.x) - 1, (curve.name, i)
+            steps = np.diff(curve.x[i - 1: i + 2, 0])
+            assert steps[0] * steps[1] < 0, (curve.name, fold.x)
 
 
 def test_keep_unphysical_keeps_and_flags_the_rest():

@@ -1,5 +1,7 @@
 """Branch points: located on a branch, tangents from the bifurcation equation, switching."""
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -162,3 +164,16 @@ def test_branch_points_on_a_curved_branch_and_switching_at_both():
             assert line.status is Status.MAX_ARCLENGTH
             assert np.max(np.abs(line.x[:, 1] - line.x[:, 0])) <= 1e-10
             assert np.sign(line.x[-1, 0] - expected[0]) == direction
+
+
+def test_no_fold_reported_at_the_start_of_a_switched_branch():
+    # a pitchfork at (0.3, 0.7): the new branch lambda - 0.3 = (u - 0.7)^2 is stationary in
+    # lambda at the branch point itself. That is the start, not a fold of the first step,
+    # though the computed branch tangent has a lambda component of +-2e-17.
+    shifted = Problem(lambda x: np.array([(x[1] - 0.7) * (x[0] - 0.3 - (x[1] - 0.7) ** 2)]),
+                      lambda x: np.array([[x[1] - 0.7, x[0] - 0.3 - 3.0 * (x[1] - 0.7) ** 2]]))
+    options = replace(OPTIONS, fold_coordinates=(0,))
+    for start in ([0.3, 0.7], [0.3 + 1e-6, 0.7]):
+        for direction in ([0.0, 1.0], [0.0, -1.0]):
+            curve = switch_branch(shifted, start, direction=direction, options=options)
+            assert curve.ok and not curve.special("fold"), (start, direction)
