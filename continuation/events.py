@@ -27,6 +27,7 @@ from .corrector import (
 )
 from .options import Options
 from .problem import Evaluator
+from .small import all_finite, max_abs, norm
 
 __all__ = ["Event", "LocateError", "Located", "box_events", "crossed", "locate_zero"]
 
@@ -265,7 +266,7 @@ def locate_zero(
             # a trial exactly at a branch point meets an exactly singular bordered
             # matrix; one a hair beside it (the zero is then refined) does not
             point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s + nudge - s_a)
-            border = derivative / np.linalg.norm(derivative)
+            border = derivative / norm(derivative)
             result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
                              max_newton=options.max_newton,
                              max_contraction=options.newton_contraction,
@@ -274,8 +275,8 @@ def locate_zero(
                 break
         if not result.ok:
             raise LocateError(f"trial point at s={s!r} not corrected: {result.reason}")
-        if float(np.linalg.norm(result.x - point)) > JUMP * (s_b - s_a):
-            raise LocateError(f"trial point at s={s!r} moved {np.linalg.norm(result.x - point)!r}"
+        if norm(result.x - point) > JUMP * (s_b - s_a):
+            raise LocateError(f"trial point at s={s!r} moved {norm(result.x - point)!r}"
                               " from its prediction: it may have jumped to another branch")
         if result.tangent is not None and float(result.tangent @ border) < RELIABLE:
             # next to a branch point the computed null vector is noise; the
@@ -393,12 +394,12 @@ def refine_branch_point(
     the residual left by the arc.
     """
     s_star = located.s
-    distance = 3e-4 * (1.0 + float(np.max(np.abs(located.correction.x))))
+    distance = 3e-4 * (1.0 + max_abs(located.correction.x))
     nodes = []
     for s in (s_star - distance, s_star + distance):
         h = end.s - start.s
         point, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
-        border = derivative / np.linalg.norm(derivative)
+        border = derivative / norm(derivative)
         node = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
                        max_newton=options.max_newton,
                        max_contraction=options.newton_contraction,
@@ -411,12 +412,12 @@ def refine_branch_point(
 
     def on_arc(s: float):
         point, derivative = hermite(x_a, t_a, x_b, t_b, width, s - s_a)
-        return point, derivative / np.linalg.norm(derivative)
+        return point, derivative / norm(derivative)
 
     def determinant(s: float) -> float:
         point, border = on_arc(s)
         jacobian = evaluator.jacobian(point)
-        factors = _factor(jacobian, border) if np.isfinite(jacobian).all() else None
+        factors = _factor(jacobian, border) if all_finite(jacobian) else None
         if factors is None:
             return 0.0
         return _signed_det(*factors)
@@ -427,7 +428,7 @@ def refine_branch_point(
     s, _, accuracy = _brent(determinant, s_a, f_a, s_b, f_b, options.event_tol)
     point, border = on_arc(s)
     residual = evaluator.residual(point)
-    rnorm = float(np.max(np.abs(residual)))
+    rnorm = max_abs(residual)
     for _ in range(3):
         if rnorm <= 1e-3 * options.tol:
             break
@@ -438,7 +439,7 @@ def refine_branch_point(
         step = np.linalg.lstsq(jacobian, -residual, rcond=1e-8)[0]
         trial = point + step
         trial_residual = evaluator.residual(trial)
-        trial_norm = float(np.max(np.abs(trial_residual)))
+        trial_norm = max_abs(trial_residual)
         if not trial_norm < rnorm:
             break
         point, residual, rnorm = trial, trial_residual, trial_norm
