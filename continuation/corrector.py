@@ -181,9 +181,15 @@ def correct(
     ``b^T t > 0`` (Allgower & Georg, sec. 2.1 and 3.4). The determinant
     ``det [H'; t^T] = |v| det [H'; b^T]`` follows without extra work; its sign
     changes at simple branch points, not at folds (Allgower & Georg,
-    Theorem 8.1.14). The iterate is accepted when its residual and the next
-    correction are below tolerance; the correction is not applied, so the
-    returned point's residual is the one checked.
+    Theorem 8.1.14). After a full step, the next one is a chord step with the
+    same factors (no new Jacobian) as long as it shrinks the correction at
+    least ``CHORD_RATE``-fold (Deuflhard, *Newton Methods for Nonlinear
+    Problems*, 2004, sec. 2.1: simplified Newton); otherwise the Jacobian is
+    re-evaluated. When the tangent is needed, a point is accepted only after a
+    full step at it (a fresh Jacobian), so the returned tangent and
+    determinant belong to the returned point. The iterate is accepted when its
+    residual and the next correction are below tolerance; the correction is
+    not applied, so the returned point's residual is the one checked.
 
     References
     ----------
