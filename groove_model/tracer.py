@@ -283,9 +283,10 @@ def _assemble(name: str, system: BoundarySystem, curve: Curve, keep_unphysical: 
         if p.index == 0:
             continue  # a validity function vanishes at a seed on the regime limit: no crossing
         if p.kind == "fold" and p.coordinate == 0:
-            if _at_corner(x[p.index]) or np.linalg.norm(x[p.index] - x[0]) <= 1e-8:
-                # In the w chart gamma is stationary at the corner; at the branch point it is
-                # stationary by the symmetry delta -> -delta. Both are ends, not turning points.
+            if _at_corner(x[p.index]):
+                # In the w chart gamma is stationary at the corner: an end, not a turning point.
+                # (At the branch point, where gamma is stationary by the symmetry
+                # delta -> -delta, the engine reports no fold: it is the curve's start.)
                 continue
             specials.append((p.index, "fold_gamma", "turning point in gamma"))
         elif p.kind == "event" and p.name.startswith("validity"):
