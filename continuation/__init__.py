@@ -20,15 +20,19 @@ from .branching import branch_tangents, locate_branch_point, switch_branch
 from .events import Event, box_events
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian
-from .result import ContinuationError, Curve, SpecialPoint, Status
+from .errors import CallbackError, CallbackShapeError, ContinuationError
+from .result import Curve, SpecialKind, SpecialPoint, Status
 from .tracker import trace
 
 __all__ = [
+    "CallbackError",
+    "CallbackShapeError",
     "ContinuationError",
     "Curve",
     "Event",
     "Options",
     "Problem",
+    "SpecialKind",
     "SpecialPoint",
     "Status",
     "box_events",

@@ -122,6 +122,7 @@ def correct(
     need_tangent: bool = True,
     residual: np.ndarray | None = None,
     jacobian: np.ndarray | None = None,
+    accept_fallback: bool = False,
 ) -> Correction:
     """Correct a predicted point onto the curve by Newton's method.
 
@@ -156,6 +157,16 @@ def correct(
         Newton correction with the previous factorisation, saving a Jacobian.
     residual, jacobian : ndarray or None, optional
         ``H(x_pred)`` and ``H'(x_pred)`` if already evaluated.
+    accept_fallback : bool, optional
+        If a later step fails (diverges, meets a singular matrix or a
+        non-finite value), return the last iterate with ``max |H| <= tol``
+        even though its Newton correction was above ``xtol``. Only the
+        locators ask for it, on points they check themselves: next to a branch
+        point the bordered matrix is nearly singular and the corrections stall
+        at the rounding level ``eps / sigma_min`` above ``xtol``, or blow up
+        from a point that already solves the equations. Never for curve points:
+        where ``H'`` is small (a cusp), ``|H| <= tol`` holds far from the curve
+        and only a small correction shows that a point is on it.
 
     Returns
     -------
@@ -163,11 +174,6 @@ def correct(
 
     Notes
     -----
-    If a later step fails (diverges, meets a singular matrix or a non-finite
-    value), the last iterate with ``max |H| <= tol`` is returned: next to a
-    branch point the bordered matrix is nearly singular and the corrections
-    stall at the rounding level ``eps / sigma_min`` above ``xtol``, or blow up
-    from a point that already solves the equations.
 
     Each step solves Keller's bordered system [1]_
 
@@ -218,7 +224,7 @@ def correct(
     fallback = None
 
     def failure(reason, rnorm, k, rate=None):
-        if fallback is not None:
+        if fallback is not None and accept_fallback:
             return fallback
         return Correction(False, reason, x, None, 0.0, rnorm, k, first,
                           contraction if rate is None else rate)

@@ -1,14 +1,11 @@
-"""Events (scalar functions of a curve point) and the locator of their zeros.
+"""Events: scalar functions of a curve point whose zeros the engine locates.
 
-The locator is shared by events, folds and branch points: a zero of a scalar
-function ``f(s)`` along the curve, bracketed between two accepted points, is
-found by Brent's method in the pseudo-arclength ``s``; every trial point is
-predicted on the cubic Hermite arc of the step and corrected onto the curve.
+How the zeros are found (bracketed inside each step, located by Brent's method
+on the curve) is :mod:`continuation.locate`.
 """
 
 from __future__ import annotations
 
-import logging
 import math
 import numbers
 from collections.abc import Callable, Mapping, Sequence
@@ -16,33 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .corrector import (
-    SINGULAR,
-    Correction,
-    _factor,
-    _signed_det,
-    correct,
-    hermite,
-    tangent_at,
-)
-from .options import Options
-from .problem import Evaluator
-from .small import all_finite, max_abs, norm
-
-__all__ = ["Event", "LocateError", "Located", "box_events", "crossed", "locate_zero"]
-
-logger = logging.getLogger(__name__)
-
-_EPS = np.finfo(float).eps
-
-#: a corrected trial point may move at most this fraction of its Hermite interval
-JUMP = 0.1
-
-#: relative offset of a trial point retried beside an exactly singular one
-NUDGE = 1e-9
-
-#: a trial's tangent is used when its cosine with the interpolated tangent exceeds this
-RELIABLE = math.cos(0.1)
+__all__ = ["Event", "box_events", "crossed"]
 
 
 @dataclass(frozen=True)
@@ -60,6 +31,13 @@ class Event:
         ``-1``: only where it decreases, ``0`` (default): both.
     terminal : bool, optional
         Stop the curve at the (first) zero.
+    gradient : callable or None, optional
+        ``gradient(x) -> ndarray, shape (n + 1,)``, the derivative of
+        ``function``. The engine needs the event's rate of change along the
+        curve, ``gradient(x) . t``, at every point, to find pairs of zeros
+        inside one step and the side of a zero at the start; ``None``
+        (default) takes a central difference of ``function`` along the
+        tangent (two more calls of ``function`` per point).
 
     Raises
     ------
@@ -73,6 +51,7 @@ class Event:
     function: Callable[[np.ndarray], float]
     direction: int = 0
     terminal: bool = False
+    gradient: Callable[[np.ndarray], np.ndarray] | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
@@ -85,6 +64,8 @@ class Event:
             raise ValueError(f"Event.direction must be -1, 0 or 1, got {self.direction!r}")
         if not isinstance(self.terminal, bool):
             raise TypeError(f"Event.terminal must be True or False, got {self.terminal!r}")
+        if self.gradient is not None and not callable(self.gradient):
+            raise TypeError(f"Event.gradient must be callable or None, got {self.gradient!r}")
 
 
 def box_events(
@@ -130,9 +111,11 @@ def box_events(
 
     events = []
     for i, bound in sorted(lows.items()):
-        events.append(Event(f"{label(i)} >= {bound!r}", _Offset(i, bound), -1, True))
+        offset = _Offset(i, bound)
+        events.append(Event(f"{label(i)} >= {bound!r}", offset, -1, True, offset.gradient))
     for i, bound in sorted(highs.items()):
-        events.append(Event(f"{label(i)} <= {bound!r}", _Offset(i, bound), 1, True))
+        offset = _Offset(i, bound)
+        events.append(Event(f"{label(i)} <= {bound!r}", offset, 1, True, offset.gradient))
     return events
 
 
@@ -145,6 +128,12 @@ class _Offset:
 
     def __call__(self, x: np.ndarray) -> float:
         return x[self.index] - self.value
+
+    def gradient(self, x: np.ndarray) -> np.ndarray:
+        """The unit vector ``e_index``."""
+        unit = np.zeros(len(x))
+        unit[self.index] = 1.0
+        return unit
 
 
 def _bounds(which: str, bounds) -> dict[int, float]:
@@ -178,272 +167,3 @@ def crossed(before: float, after: float, direction: int = 0) -> bool:
     if direction == 0:
         return True
     return (after > before) == (direction > 0)
-
-
-class LocateError(RuntimeError):
-    """A trial point of the locator could not be corrected onto the curve."""
-
-
-class Located:
-    """A located zero (internal): the corrected point and the bracket width."""
-
-    __slots__ = ("accuracy", "correction", "endpoint", "s")
-
-    def __init__(self, s: float, correction: Correction | None, accuracy: float,
-                 endpoint: str | None) -> None:
-        self.s = s
-        self.correction = correction
-        self.accuracy = accuracy
-        self.endpoint = endpoint
-
-
-def locate_zero(
-    evaluator: Evaluator,
-    options: Options,
-    function: Callable[[Correction], float],
-    start,
-    end,
-    f_start: float,
-    f_end: float,
-    need_tangent: bool,
-) -> Located:
-    """Locate the zero of ``function`` along the curve between two points.
-
-    Parameters
-    ----------
-    evaluator : Evaluator
-        Counting evaluator of the problem.
-    options : Options
-        ``event_tol`` is the bracket width; ``tol`` the residual tolerance.
-    function : callable
-        ``function(correction) -> float`` of a corrected trial point.
-    start, end : object with ``x``, ``s``, ``tangent``
-        Accepted curve points bracketing the zero.
-    f_start, f_end : float
-        The function at ``start`` and ``end``, of opposite signs (or
-        ``f_end == 0``).
-    need_tangent : bool
-        Whether ``function`` uses the tangent or determinant.
-
-    Returns
-    -------
-    Located
-        ``endpoint`` is ``'start'``/``'end'`` when the best point is an
-        accepted point, else ``correction`` is the located point (with its
-        tangent).
-
-    Raises
-    ------
-    LocateError
-        If a trial point cannot be corrected.
-
-    Notes
-    -----
-    Brent's method [1]_ (inverse quadratic interpolation and secant steps
-    safeguarded by bisection) on ``f(s)`` keeps a bracket and stops when it is
-    at most ``event_tol + 4 eps |s|`` wide. A trial point at ``s`` is the
-    cubic Hermite prediction ``p(s)``, corrected by Newton in the hyperplane
-    through ``p(s)`` normal to ``p'(s)`` (Allgower & Georg, sec. 9.2).
-
-    References
-    ----------
-    .. [1] R. P. Brent, *Algorithms for Minimization without Derivatives*,
-       Prentice-Hall, 1973, ch. 4.
-    """
-    if f_end == 0.0:
-        return Located(end.s, None, 0.0, "end")
-    h = end.s - start.s
-    trials: dict[float, Correction] = {}
-    # curve points with exact tangents, (s, x, tangent), sorted by s: the
-    # prediction of a trial uses the nearest on either side, so that its error,
-    # O(width^4), vanishes as the bracket shrinks and Newton has little to do
-    nodes = [(start.s, start.x, start.tangent), (end.s, end.x, end.tangent)]
-
-    def evaluate(s: float) -> float:
-        k = next(k for k in range(1, len(nodes)) if nodes[k][0] >= s)
-        (s_a, x_a, t_a), (s_b, x_b, t_b) = nodes[k - 1], nodes[k]
-        for nudge in (0.0, NUDGE * (s_b - s_a)):
-            # a trial exactly at a branch point meets an exactly singular bordered
-            # matrix; one a hair beside it (the zero is then refined) does not
-            point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s + nudge - s_a)
-            border = derivative / norm(derivative)
-            result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                             max_newton=options.max_newton,
-                             max_contraction=options.newton_contraction,
-                             max_correction=JUMP * (s_b - s_a), need_tangent=need_tangent)
-            if result.ok or result.reason != SINGULAR:
-                break
-        if not result.ok:
-            raise LocateError(f"trial point at s={s!r} not corrected: {result.reason}")
-        if norm(result.x - point) > JUMP * (s_b - s_a):
-            raise LocateError(f"trial point at s={s!r} moved {norm(result.x - point)!r}"
-                              " from its prediction: it may have jumped to another branch")
-        if result.tangent is not None and float(result.tangent @ border) < RELIABLE:
-            # next to a branch point the computed null vector is noise; the
-            # interpolated tangent is the branch's tangent
-            result.tangent = border
-        elif result.tangent is not None:
-            nodes.insert(k, (s, result.x, result.tangent))
-        trials[s] = result
-        value = float(function(result))
-        if not math.isfinite(value):
-            raise LocateError(f"the located function is {value!r} at s={s!r}")
-        return value
-
-    s, _, width = _brent(evaluate, start.s, f_start, end.s, f_end, options.event_tol)
-    if s == start.s:
-        return Located(s, None, width, "start")
-    if s == end.s:
-        return Located(s, None, width, "end")
-    result = trials[s]
-    if result.tangent is None:
-        _, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
-        result.tangent, result.det = tangent_at(evaluator, result.x, derivative)
-        if result.tangent is None:
-            raise LocateError(f"no tangent at the located point s={s!r}")
-    return Located(s, result, width, None)
-
-
-def _brent(f, a: float, fa: float, b: float, fb: float, xtol: float,
-           max_iterations: int = 100) -> tuple[float, float, float]:
-    """Brent's root finder on a bracket; returns ``(root, f(root), bracket width)``."""
-    c, fc = a, fa
-    d = e = b - a
-    for _ in range(max_iterations):
-        if (fb > 0) == (fc > 0) and fb != 0:
-            c, fc = a, fa
-            d = e = b - a
-        if abs(fc) < abs(fb):
-            a, fa = b, fb
-            b, fb = c, fc
-            c, fc = a, fa
-        tol1 = 2.0 * _EPS * abs(b) + 0.5 * xtol
-        m = 0.5 * (c - b)
-        if fb == 0.0:
-            return b, fb, 0.0
-        if abs(m) <= tol1:
-            return b, fb, abs(c - b)
-        if abs(e) >= tol1 and abs(fa) > abs(fb):
-            s = fb / fa
-            if a == c:
-                p = 2.0 * m * s
-                q = 1.0 - s
-            else:
-                q = fa / fc
-                r = fb / fc
-                p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
-                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
-            if p > 0:
-                q = -q
-            else:
-                p = -p
-            if 2.0 * p < min(3.0 * m * q - abs(tol1 * q), abs(e * q)):
-                e = d
-                d = p / q
-            else:
-                d = e = m
-        else:
-            d = e = m
-        a, fa = b, fb
-        b = b + d if abs(d) > tol1 else b + math.copysign(tol1, m)
-        fb = f(b)
-    logger.warning("Brent's method did not reach the bracket width %g", xtol)
-    return b, fb, abs(c - b)
-
-
-def refine_branch_point(
-    evaluator: Evaluator,
-    options: Options,
-    located: Located,
-    start,
-    end,
-) -> Located:
-    """Refine a branch point located by :func:`locate_zero` beyond ``sqrt(eps)``.
-
-    Parameters
-    ----------
-    evaluator : Evaluator
-        Counting evaluator of the problem.
-    options : Options
-        Tolerances.
-    located : Located
-        The zero of ``det [H'; b^T]`` found with corrected trial points.
-    start, end : object with ``x``, ``s``, ``tangent``
-        The accepted points of the step.
-
-    Returns
-    -------
-    Located
-        The refined branch point, or ``located`` if the refinement does not
-        bracket the zero.
-
-    Notes
-    -----
-    Next to a branch point the bordered matrix has a smallest singular value
-    ``sigma ~ |s - s*|``, so corrected trial points carry rounding errors
-    ``eps / sigma`` and the located point is only accurate to about
-    ``sqrt(eps)``. The branch itself is smooth through the branch point, so two
-    nodes ``d = 3e-4 (1 + max|x|)`` on either side (where ``eps / sigma`` is
-    negligible) are corrected, and the zero of
-    ``det [H'(p(s)); p'(s)^T]`` is found by Brent's method on their cubic
-    Hermite arc ``p`` without further correction: ``p`` is accurate to
-    ``O(d^4)`` and the determinant is smooth, so both the arclength and the
-    point are accurate to about ``event_tol`` (``d`` balances the Hermite
-    error ``d^4`` against the rounding ``eps / d`` at the nodes). A final
-    Gauss-Newton step of minimal norm, blind to the near null space, removes
-    the residual left by the arc.
-    """
-    s_star = located.s
-    distance = 3e-4 * (1.0 + max_abs(located.correction.x))
-    nodes = []
-    for s in (s_star - distance, s_star + distance):
-        h = end.s - start.s
-        point, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
-        border = derivative / norm(derivative)
-        node = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                       max_newton=options.max_newton,
-                       max_contraction=options.newton_contraction,
-                       max_correction=JUMP * distance)
-        if not node.ok:
-            return located
-        nodes.append((s, node.x, node.tangent))
-    (s_a, x_a, t_a), (s_b, x_b, t_b) = nodes
-    width = s_b - s_a
-
-    def on_arc(s: float):
-        point, derivative = hermite(x_a, t_a, x_b, t_b, width, s - s_a)
-        return point, derivative / norm(derivative)
-
-    def determinant(s: float) -> float:
-        point, border = on_arc(s)
-        jacobian = evaluator.jacobian(point)
-        factors = _factor(jacobian, border) if all_finite(jacobian) else None
-        if factors is None:
-            return 0.0
-        return _signed_det(*factors)
-
-    f_a, f_b = determinant(s_a), determinant(s_b)
-    if not f_a * f_b < 0:
-        return located
-    s, _, accuracy = _brent(determinant, s_a, f_a, s_b, f_b, options.event_tol)
-    point, border = on_arc(s)
-    residual = evaluator.residual(point)
-    rnorm = max_abs(residual)
-    for _ in range(3):
-        if rnorm <= 1e-3 * options.tol:
-            break
-        # Gauss-Newton steps of minimal norm that ignore the (near) null space
-        # of the rank-deficient H': they remove the O(d^4) residual of the arc
-        # without sliding along either branch
-        jacobian = evaluator.jacobian(point)
-        step = np.linalg.lstsq(jacobian, -residual, rcond=1e-8)[0]
-        trial = point + step
-        trial_residual = evaluator.residual(trial)
-        trial_norm = max_abs(trial_residual)
-        if not trial_norm < rnorm:
-            break
-        point, residual, rnorm = trial, trial_residual, trial_norm
-    if not rnorm <= options.tol:
-        return located
-    refined = Correction(True, "", point, border, 0.0, rnorm, 0, 0.0, 0.0)
-    return Located(s, refined, accuracy, None)

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .errors import CallbackError, CallbackShapeError
+
 __all__ = ["Problem", "check_jacobian", "finite_difference_jacobian"]
 
 logger = logging.getLogger(__name__)
@@ -213,14 +215,19 @@ def check_jacobian(
 
 
 class Evaluator:
-    """Counting evaluator of a :class:`Problem` (internal).
+    """Counting, checking evaluator of a :class:`Problem` (internal).
 
     ``residual_evals`` counts every call of ``problem.residual``, including
     the ``2 (n + 1)`` calls of each finite-difference Jacobian;
     ``jacobian_evals`` counts Jacobians (supplied or finite-difference).
+    Once :meth:`expect` has fixed ``n + 1``, every result is checked for its
+    shape, and an exception raised by the problem's functions is re-raised as
+    :class:`~continuation.result.CallbackError` naming the function and the
+    point (the original exception is its ``__cause__``).
     """
 
-    __slots__ = ("_jacobian", "_residual", "jacobian_evals", "problem", "residual_evals")
+    __slots__ = ("_jacobian", "_jacobian_shape", "_residual", "_residual_shape",
+                 "jacobian_evals", "problem", "residual_evals")
 
     def __init__(self, problem: Problem) -> None:
         self.problem = problem
@@ -228,15 +235,49 @@ class Evaluator:
         self.jacobian_evals = 0
         self._residual = problem.residual
         self._jacobian = problem.jacobian
+        self._residual_shape = None
+        self._jacobian_shape = None
+
+    def expect(self, n1: int) -> None:
+        """Check every later result against ``n + 1 = n1`` unknowns."""
+        self._residual_shape = (n1 - 1,)
+        self._jacobian_shape = (n1 - 1, n1)
 
     def residual(self, x: np.ndarray) -> np.ndarray:
         """Return ``H(x)`` as a float array and count it."""
         self.residual_evals += 1
-        return np.asarray(self._residual(x), dtype=float)
+        try:
+            value = self._residual(x)
+        except Exception as exc:
+            raise _raised("residual", self.problem, x, exc) from exc
+        H = np.asarray(value, dtype=float)
+        if self._residual_shape is not None and H.shape != self._residual_shape:
+            raise _wrong_shape("residual", self.problem, x, H.shape, self._residual_shape)
+        return H
 
     def jacobian(self, x: np.ndarray) -> np.ndarray:
         """Return ``H'(x)`` as a float array and count it."""
         self.jacobian_evals += 1
         if self._jacobian is None:
             return finite_difference_jacobian(self.residual, x)
-        return np.asarray(self._jacobian(x), dtype=float)
+        try:
+            value = self._jacobian(x)
+        except Exception as exc:
+            raise _raised("jacobian", self.problem, x, exc) from exc
+        J = np.asarray(value, dtype=float)
+        if self._jacobian_shape is not None and J.shape != self._jacobian_shape:
+            raise _wrong_shape("jacobian", self.problem, x, J.shape, self._jacobian_shape)
+        return J
+
+
+def _raised(function: str, problem: Problem, x: np.ndarray, exc: Exception):
+    return CallbackError(f"{function}(x) raised {type(exc).__name__}: {exc} at "
+                         f"x={problem.describe(np.asarray(x, dtype=float))}")
+
+
+def _wrong_shape(function: str, problem: Problem, x: np.ndarray, found: tuple,
+                 expected: tuple):
+    n = expected[0]
+    return CallbackShapeError(
+        f"{function}(x) returned shape {found}, expected {expected} (n = {n} equations in "
+        f"n + 1 = {n + 1} unknowns) at x={problem.describe(np.asarray(x, dtype=float))}")

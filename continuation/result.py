@@ -9,13 +9,40 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .corrector import correct, hermite
+from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .options import Options
 from .problem import Evaluator, Problem
 
-__all__ = ["SPECIAL_KINDS", "ContinuationError", "Curve", "SpecialPoint", "Status"]
+__all__ = [
+    "SPECIAL_KINDS",
+    "SpecialKind",
+    "CallbackError",
+    "CallbackShapeError",
+    "ContinuationError",
+    "Curve",
+    "SpecialPoint",
+    "Status",
+]
 
-#: kinds of :class:`SpecialPoint`
-SPECIAL_KINDS = ("start", "end", "fold", "branch_point", "event", "closed")
+class SpecialKind(str, enum.Enum):
+    """Kinds of :class:`SpecialPoint`; the values are the names used in files and logs.
+
+    A ``str`` enum, so that ``point.kind == "fold"`` keeps working.
+    """
+
+    START = "start"
+    END = "end"
+    FOLD = "fold"
+    BRANCH_POINT = "branch_point"
+    EVENT = "event"
+    CLOSED = "closed"
+
+    def __str__(self) -> str:
+        return self.value
+
+
+#: the values of :class:`SpecialKind`
+SPECIAL_KINDS = tuple(kind.value for kind in SpecialKind)
 
 
 class Status(enum.Enum):
@@ -29,6 +56,10 @@ class Status(enum.Enum):
     START_NOT_CONVERGED = "the start point could not be corrected onto the curve"
     SINGULAR_START = "the Jacobian is singular at the start point"
     NON_FINITE = "the residual or Jacobian returned non-finite values"
+    EVENT_NOT_FINITE = "an event function returned a non-finite value"
+    NOT_LOCATED = "a special point was bracketed but could not be located"
+    INCONSISTENT = "the special points found disagree with the traced points"
+    CALLBACK_FAILED = "a residual, Jacobian or event function raised or returned a wrong shape"
 
     @property
     def failed(self) -> bool:
@@ -37,7 +68,8 @@ class Status(enum.Enum):
 
 
 _FAILURES = frozenset({Status.STEP_TOO_SMALL, Status.START_NOT_CONVERGED,
-                       Status.SINGULAR_START, Status.NON_FINITE})
+                       Status.SINGULAR_START, Status.NON_FINITE, Status.EVENT_NOT_FINITE,
+                       Status.NOT_LOCATED, Status.INCONSISTENT, Status.CALLBACK_FAILED})
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,9 +78,9 @@ class SpecialPoint:
 
     Parameters
     ----------
-    kind : str
-        One of ``'start'``, ``'end'``, ``'fold'``, ``'branch_point'``,
-        ``'event'``, ``'closed'``.
+    kind : SpecialKind
+        ``START``, ``END``, ``FOLD``, ``BRANCH_POINT``, ``EVENT`` or ``CLOSED``
+        (equal to the strings ``'start'``, ``'end'``, ...).
     name : str
         Event name, ``'fold <coordinate>'``, ``'branch point'``, ``'start'``,
         ``'closed'``, or for ``'end'`` the lower-case status name.
@@ -70,9 +102,12 @@ class SpecialPoint:
         The coordinate of a fold, else ``None``.
     tangent : ndarray, shape (n + 1,) or None
         Unit tangent of the traced branch at the point.
+    event : int or None
+        For an event, its position in the ``events`` passed to ``trace`` (events are
+        identified by position, never by name), else ``None``.
     """
 
-    kind: str
+    kind: SpecialKind
     name: str
     index: int
     x: np.ndarray = field(repr=False)
@@ -81,14 +116,10 @@ class SpecialPoint:
     accuracy: float
     coordinate: int | None = None
     tangent: np.ndarray | None = field(default=None, repr=False)
+    event: int | None = None
 
-
-class ContinuationError(RuntimeError):
-    """A continuation run failed; ``curve`` holds the partial :class:`Curve`."""
-
-    def __init__(self, message: str, curve: Curve) -> None:
-        super().__init__(message)
-        self.curve = curve
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "kind", SpecialKind(self.kind))
 
 
 @dataclass(frozen=True, eq=False)
@@ -159,17 +190,19 @@ class Curve:
         """``max |H(x)|`` over all points (0 for an empty curve)."""
         return float(self.residuals.max()) if self.residuals.size else 0.0
 
-    def special(self, kind: str) -> tuple[SpecialPoint, ...]:
+    def special(self, kind: SpecialKind | str) -> tuple[SpecialPoint, ...]:
         """Return the special points of one kind, in order along the curve.
 
         Raises
         ------
         ValueError
-            If ``kind`` is not one of ``SPECIAL_KINDS``.
+            If ``kind`` is not a :class:`SpecialKind` (or its value).
         """
-        if kind not in SPECIAL_KINDS:
-            raise ValueError(f"kind must be one of {SPECIAL_KINDS}, got {kind!r}")
-        return tuple(point for point in self.special_points if point.kind == kind)
+        try:
+            kind = SpecialKind(kind)
+        except ValueError:
+            raise ValueError(f"kind must be one of {SPECIAL_KINDS}, got {kind!r}") from None
+        return tuple(point for point in self.special_points if point.kind is kind)
 
     def point_at(self, s: float) -> np.ndarray:
         """Return the point of the curve at pseudo-arclength ``s``.

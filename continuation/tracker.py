@@ -14,11 +14,22 @@ from typing import NamedTuple
 import numpy as np
 
 from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
-from .events import Event, Located, LocateError, crossed, locate_zero, refine_branch_point
+from .errors import CallbackError, CallbackShapeError, ContinuationError
+from .events import Event, crossed
+from .locate import (
+    EventNotFinite,
+    Located,
+    LocateError,
+    Node,
+    StepScan,
+    event_value,
+    locate_zero,
+    refine_branch_point,
+)
 from .options import Options
 from .problem import Evaluator, Problem
+from .result import Curve, SpecialKind, SpecialPoint, Status
 from .small import norm
-from .result import ContinuationError, Curve, SpecialPoint, Status
 
 __all__ = ["trace"]
 
@@ -37,19 +48,8 @@ BRANCH_TANGENT_NOISE = 1e-7
 CLOSE_TOLERANCE = 1e-6
 
 
-class _Point:
-    """An accepted curve point (internal)."""
-
-    __slots__ = ("det", "events", "iterations", "residual", "s", "tangent", "x")
-
-    def __init__(self, x, s, tangent, det, residual, iterations, events):
-        self.x = x
-        self.s = s
-        self.tangent = tangent
-        self.det = det
-        self.residual = residual
-        self.iterations = iterations
-        self.events = events
+#: accepted curve points are scan nodes (the name the predictor's tests use)
+_Point = Node
 
 
 class _Run:
@@ -69,8 +69,14 @@ class _Run:
         self.special: list[SpecialPoint] = []
         self.rejected = 0
 
-    def event_values(self, x: np.ndarray) -> list[float]:
-        return [float(event.function(x)) for event in self.events]
+    def node(self, x, s, tangent, det, residual, iterations) -> Node:
+        """A curve point with its event values; :class:`EventNotFinite` if one is not finite."""
+        values = [event_value(event, x, self.problem.describe) for event in self.events]
+        for event, value in zip(self.events, values):
+            if not math.isfinite(value):
+                raise EventNotFinite(f"event '{event.name}' is {value!r} at "
+                                     f"x={self.problem.describe(x)}")
+        return Node(x, s, tangent, det, residual, iterations, values)
 
     def append(self, x, s, tangent, residual, iterations) -> int:
         self.x.append(x)
@@ -80,17 +86,17 @@ class _Run:
         self.iterations.append(iterations)
         return len(self.s) - 1
 
-    def mark(self, kind, name, index, accuracy, coordinate=None) -> SpecialPoint:
+    def mark(self, kind, name, index, accuracy, coordinate=None, event=None) -> SpecialPoint:
         point = SpecialPoint(kind=kind, name=name, index=index, x=self.x[index],
                              s=self.s[index], residual=self.residuals[index],
                              accuracy=accuracy, coordinate=coordinate,
-                             tangent=self.tangents[index])
+                             tangent=self.tangents[index], event=event)
         self.special.append(point)
         logger.info("%s '%s' at s=%.12g, x=%s (accuracy %.2g)", kind, name, point.s,
                     self.problem.describe(point.x), accuracy)
         return point
 
-    def curve(self, status: Status, message: str, n1: int) -> Curve:
+    def curve(self, status: Status, message: str, n1: int, raise_failure: bool = True) -> Curve:
         if self.s:
             self.mark("end", status.name.lower(), len(self.s) - 1,
                       self.options.tol)
@@ -113,7 +119,7 @@ class _Run:
         )
         if status.failed:
             logger.warning("continuation failed: %s", message)
-            if self.options.raise_on_failure:
+            if self.options.raise_on_failure and raise_failure:
                 raise ContinuationError(message, curve)
         return curve
 
@@ -227,9 +233,23 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         if i >= n1:
             raise ValueError(f"Options.fold_coordinates entries must be < {n1}, got {i}")
     evaluator = Evaluator(problem) if evaluator is None else evaluator
+    evaluator.expect(n1)
     run = _Run(problem, options, events, evaluator)
+    try:
+        return _follow(run, x0, direction, tangent, start_kind, at_branch_point)
+    except (CallbackError, CallbackShapeError) as error:
+        # the user's function failed: the exception carries what was traced before
+        error.curve = run.curve(Status.CALLBACK_FAILED, str(error), n1, raise_failure=False)
+        raise
 
-    start, status, message = _start(run, x0, direction, tangent, at_branch_point)
+
+def _follow(run: _Run, x0, direction, tangent, start_kind, at_branch_point) -> Curve:
+    """The predict-correct loop of :func:`trace` from a checked start."""
+    problem, options, evaluator, n1 = run.problem, run.options, run.evaluator, x0.size
+    try:
+        start, status, message = _start(run, x0, direction, tangent, at_branch_point)
+    except EventNotFinite as error:
+        return run.curve(Status.EVENT_NOT_FINITE, f"at the start: {error}", n1)
     if start is None:
         return run.curve(status, message, n1)
     index = run.append(start.x, 0.0, start.tangent, start.residual, start.iterations)
@@ -238,7 +258,7 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
     point = start
     ds = options.ds
     # the accepted points the predictor interpolates, oldest first
-    nodes: list[_Point] = []
+    nodes: list[Node] = []
     steps = 0
     failure = ""
     status = None
@@ -283,16 +303,35 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         # accept
         steps += 1
         length = _arc_length(correction.x - point.x, alpha)
-        new = _Point(correction.x, point.s + length, correction.tangent, correction.det,
-                     correction.residual, correction.iterations,
-                     run.event_values(correction.x))
-        truncated = h >= options.max_arclength - point.s
-        if truncated and new.s != options.max_arclength:
-            new = _point_at_arclength(run, point, new, options.max_arclength)
-        closing = _closing_point(run, start, point, new) if options.detect_closed else None
-        if closing is not None:
-            new = closing
-        terminal = _add_step(run, point, new)
+        try:
+            new = run.node(correction.x, point.s + length, correction.tangent, correction.det,
+                           correction.residual, correction.iterations)
+            truncated = h >= options.max_arclength - point.s
+            if truncated and new.s != options.max_arclength:
+                new = _point_at_arclength(run, point, new, options.max_arclength)
+            closing = _closing_point(run, start, point, new) if options.detect_closed else None
+            if closing is not None:
+                new = closing
+            found = _scan_step(run, point, new)
+        except EventNotFinite as error:
+            status, message = Status.EVENT_NOT_FINITE, (
+                f"{error}; the event's zeros cannot be found beyond s={point.s:.12g}: make the "
+                "event finite along the curve or stop the curve before")
+            break
+        except LocateError as error:
+            # a step whose special points cannot be located is too long for its Hermite
+            # arc: reject it like any other, and fail only at the smallest step
+            run.rejected += 1
+            steps -= 1
+            ds = 0.5 * h
+            if ds < options.ds_min:
+                status, message = Status.NOT_LOCATED, (
+                    f"{Status.NOT_LOCATED.value}: {error}; even with the step size {h:.3g} "
+                    f"(ds_min={options.ds_min:.3g}); the curve ends before it")
+            else:
+                logger.debug("step %d rejected: %s", steps + 1, error)
+            continue
+        terminal = _add_step(run, point, new, found)
         if terminal is not None:
             status, message = Status.TERMINAL_EVENT, (
                 f"terminal event '{terminal.name}' at s={terminal.s:.12g}, "
@@ -311,6 +350,10 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
         # whose error the extrapolation would amplify: it is no Hermite node
         nodes = [*nodes[-(PREDICTOR_NODES - 2):], point] if point.det != 0.0 else []
         point = new
+    if not status.failed:
+        inconsistency = _fold_inconsistency(run)
+        if inconsistency:
+            status, message = Status.INCONSISTENT, inconsistency
     return run.curve(status, message, n1)
 
 
@@ -396,12 +439,11 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
             raise ValueError("direction is orthogonal to the tangent at the start; "
                              "it cannot choose an orientation")
         sign = 1 if dot > 0 else -1
-    point = _Point(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations,
-                   run.event_values(x))
+    point = run.node(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations)
     return point, None, ""
 
 
-def _extrapolate(nodes: Sequence[_Point], h: float):
+def _extrapolate(nodes: Sequence[Node], h: float):
     """Prediction ``h`` beyond the last node on the Hermite interpolant of the nodes.
 
     Returns ``(x_pred, border, order)``: the point, the unit tangent of the
@@ -500,7 +542,7 @@ def _step_multiplier(correction, alpha: float, order: int, options: Options) -> 
     return 2.0 if f <= 0.5 else max(0.5, 1.0 / f)
 
 
-def _step_failure(run: _Run, point: _Point, steps: int, reason: str, ds: float):
+def _step_failure(run: _Run, point: Node, steps: int, reason: str, ds: float):
     """Status and message when the step falls below ``ds_min``."""
     where = (f"after step {steps} at s={point.s:.12g}, x={run.problem.describe(point.x)} "
              f"(step size {ds:.3g} < ds_min={run.options.ds_min:.3g})")
@@ -515,7 +557,7 @@ def _step_failure(run: _Run, point: _Point, steps: int, reason: str, ds: float):
         "loosen Options.tol, or lower Options.ds_min")
 
 
-def _point_at_arclength(run: _Run, a: _Point, b: _Point, s: float) -> _Point:
+def _point_at_arclength(run: _Run, a: Node, b: Node, s: float) -> Node:
     """The curve point at arclength ``s`` near the step ``a -> b`` (else ``b``).
 
     The step was sized in pseudo-arclength, whose sum differs from the
@@ -530,11 +572,11 @@ def _point_at_arclength(run: _Run, a: _Point, b: _Point, s: float) -> _Point:
     if not correction.ok:
         logger.debug("could not move the last point to s=%.12g: %s", s, correction.reason)
         return b
-    return _Point(correction.x, s, correction.tangent, correction.det, correction.residual,
-                  correction.iterations, run.event_values(correction.x))
+    return run.node(correction.x, s, correction.tangent, correction.det, correction.residual,
+                    correction.iterations)
 
 
-def _closing_point(run: _Run, start: _Point, a: _Point, b: _Point) -> _Point | None:
+def _closing_point(run: _Run, start: Node, a: Node, b: Node) -> Node | None:
     """The start point, if the step ``a -> b`` passes through it with the same tangent.
 
     The step must cross the hyperplane through the start normal to its tangent
@@ -568,61 +610,82 @@ def _closing_point(run: _Run, start: _Point, a: _Point, b: _Point) -> _Point | N
     if not correction.ok or float(np.max(np.abs(correction.x - x0))) > scale:
         return None
     angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
-    return _Point(x0.copy(), a.s + _arc_length(x0 - a.x, angle), start.tangent, start.det,
-                  start.residual, correction.iterations, start.events)
+    return Node(x0.copy(), a.s + _arc_length(x0 - a.x, angle), start.tangent, start.det,
+                start.residual, correction.iterations, start.events)
 
 
 class _Found(NamedTuple):
     located: Located
-    kind: str
+    kind: SpecialKind
     name: str
     coordinate: int | None
     terminal: bool
+    event: int | None = None
 
 
-def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
-    """Locate the special points of step ``(a, b]`` and append them and ``b``.
+def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
+    """Bracket and locate the special points of step ``(a, b]``, in order along it.
 
-    Returns the terminal event that ends the curve, if any; the curve then
-    ends at that event point and the rest of the step is dropped.
+    Raises
+    ------
+    LocateError
+        If a special point was bracketed but could not be located (the step may
+        be too long for the Hermite arc to predict its inside); an
+        :class:`EventNotFinite` if an event is not finite inside the step.
     """
-    options = run.options
+    options, evaluator = run.options, run.evaluator
+    describe = run.problem.describe
+    scan = StepScan(evaluator, options, run.events, a, b)
     found: list[_Found] = []
-
-    def locate(function, f_a, f_b, need_tangent, kind, name, coordinate=None,
-               terminal=False):
-        try:
-            located = locate_zero(run.evaluator, options, function, a, b, f_a, f_b,
-                                  need_tangent)
-            if kind == "branch_point" and located.endpoint is None:
-                located = refine_branch_point(run.evaluator, options, located, a, b)
-        except LocateError as error:
-            logger.warning("could not locate %s '%s' between s=%.12g and s=%.12g (%s); "
-                           "reported at the step's end with accuracy %.3g", kind, name, a.s,
-                           b.s, error, b.s - a.s)
-            located = Located(b.s, None, b.s - a.s, "end")
-        found.append(_Found(located, kind, name, coordinate, terminal))
-
-    for j, event in enumerate(run.events):
-        if crossed(a.events[j], b.events[j], event.direction):
-            locate(lambda c, f=event.function: f(c.x), a.events[j], b.events[j], False,
-                   "event", event.name, terminal=event.terminal)
-    for i in options.fold_coordinates:
-        t_a = float(a.tangent[i])
-        if a.det == 0.0 and abs(t_a) <= BRANCH_TANGENT_NOISE:
-            # a singular start's tangent (a branch tangent from the algebraic
-            # bifurcation equation) is accurate to about this: its tiny component
-            # is a zero at the start, which is no crossing of this step
-            t_a = 0.0
-        if crossed(t_a, float(b.tangent[i])):
-            locate(lambda c, i=i: c.tangent[i], t_a, float(b.tangent[i]),
-                   True, "fold", f"fold {run.problem.coordinate_name(i)}", coordinate=i)
-    if options.detect_branch_points and crossed(a.det, b.det):
-        # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
-        # the accepted ends, and smooth through the branch point where t is not
-        locate(lambda c: c.border_det, a.det, b.det, True, "branch_point", "branch point")
-
+    what = "a special point"
+    try:
+        for j, event in enumerate(run.events):
+            what = f"event '{event.name}'"
+            for lo, hi, f_lo, f_hi in scan.event_brackets(j, event.direction):
+                located = locate_zero(evaluator, options,
+                                      lambda c, e=event: event_value(e, c.x, describe),
+                                      lo, hi, f_lo, f_hi, False)
+                found.append(_Found(located, SpecialKind.EVENT, event.name, None, event.terminal,
+                                    j))
+        # folds only up to the first terminal event, where the curve ends
+        found.sort(key=lambda item: item.located.s)
+        terminal = next((item for item in found if item.terminal), None)
+        end = None
+        if terminal is not None and terminal.located.node is None:
+            c = terminal.located.correction
+            end = Node(c.x, terminal.located.s, c.tangent, c.det, c.residual, c.iterations,
+                       [event_value(e, c.x, describe) for e in run.events])
+        elif terminal is not None:
+            end = terminal.located.node
+        for i in options.fold_coordinates:
+            name = f"fold {run.problem.coordinate_name(i)}"
+            what = f"'{name}'"
+            for lo, hi, f_lo, f_hi in scan.fold_brackets(i, BRANCH_TANGENT_NOISE, end):
+                located = locate_zero(evaluator, options, lambda c, i=i: c.tangent[i],
+                                      lo, hi, f_lo, f_hi, True)
+                found.append(_Found(located, SpecialKind.FOLD, name, i, False))
+        if options.detect_branch_points and crossed(a.det, b.det):
+            what = "a branch point"
+            # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
+            # the accepted ends, and smooth through the branch point where t is not
+            located = locate_zero(evaluator, options, lambda c: c.border_det, a, b, a.det,
+                                  b.det, True)
+            if located.node is None:
+                located = refine_branch_point(evaluator, options, located, a, b)
+            found.append(_Found(located, SpecialKind.BRANCH_POINT, "branch point", None, False))
+    except LocateError as error:
+        raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
+                          f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None
     found.sort(key=lambda item: item.located.s)
+    return found
+
+
+def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint | None:
+    """Append the located special points of step ``(a, b]`` and ``b``.
+
+    Returns the terminal event that ends the curve, if any; the curve then ends
+    at that event point and the rest of the step is dropped.
+    """
     first_terminal = next((item for item in found if item.terminal), None)
     if first_terminal is not None:
         found = [item for item in found if item.located.s <= first_terminal.located.s]
@@ -633,22 +696,23 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
     previous_s = a.s
     for item in found:
         located = item.located
-        if located.endpoint == "start":
+        if located.node is a:
             index = a_index
-        elif located.endpoint == "end":
+        elif located.node is b:
             if b_index is None:
                 b_index = _append_end(run, a_index, b)
             index = b_index
-        elif located.s == previous_s:
+        elif located.s == previous_s and len(run.s) - 1 != a_index:
             index = len(run.s) - 1
         else:
-            c = located.correction
+            c = located.correction if located.node is None else located.node
             # the root finder's variable is the Hermite parameter; report arclength
             angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
             s = min(b.s, a.s + _arc_length(c.x - a.x, angle))
             index = run.append(c.x, max(s, run.s[-1]), c.tangent, c.residual, c.iterations)
         previous_s = located.s
-        special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate)
+        special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate,
+                           item.event)
         if item is first_terminal:
             terminal = special
     if terminal is None and b_index is None:
@@ -656,7 +720,34 @@ def _add_step(run: _Run, a: _Point, b: _Point) -> SpecialPoint | None:
     return terminal
 
 
-def _append_end(run: _Run, a_index: int, b: _Point) -> int:
+def _fold_inconsistency(run: _Run) -> str:
+    """A message if the points turn in a fold coordinate more often than folds were reported.
+
+    The scan of every step is the primary detector; this check of the stored
+    points is the backstop: along the points, each fold coordinate ``x_i`` may
+    turn (its increments change sign, ignoring increments within ``100 tol`` of
+    zero) only at reported folds, so the number of turns cannot exceed the
+    number of folds (a fold at the curve's first or last point turns nothing).
+    Increments are used rather than tangents: next to a branch point a
+    computed tangent is noise, a corrected point is not.
+    """
+    x = np.array(run.x)
+    noise = 100.0 * run.options.tol
+    for i in run.options.fold_coordinates:
+        steps = np.diff(x[:, i]) if len(x) > 1 else np.zeros(0)
+        turns = _sign_changes([float(v) for v in steps if abs(v) > noise])
+        folds = sum(1 for p in run.special if p.kind is SpecialKind.FOLD and p.coordinate == i)
+        if turns > folds:
+            return (f"the points turn {turns} times in {run.problem.coordinate_name(i)} but "
+                    f"{folds} folds were located: a fold was missed; lower Options.ds_max")
+    return ""
+
+
+def _sign_changes(values: list[float]) -> int:
+    return sum(1 for p, q in zip(values, values[1:]) if (p > 0.0) != (q > 0.0))
+
+
+def _append_end(run: _Run, a_index: int, b: Node) -> int:
     """Append the step's end; after inserted points, its arclength is re-measured
     from the last of them, so that every increment is at least its chord (an
     end placed exactly at ``max_arclength`` keeps that value)."""

@@ -94,7 +94,7 @@ def test_argument_validation(circle):
         trace(circle, [1.0, 0.0], direction=2)
     with pytest.raises(ValueError, match="x0 must be a finite 1-D array"):
         trace(circle, [[1.0, 0.0]])
-    with pytest.raises(ValueError, match=r"residual\(x0\) has shape \(2,\), expected \(1,\)"):
+    with pytest.raises(ValueError, match=r"residual\(x\) returned shape \(2,\), expected \(1,\)"):
         trace(Problem(lambda x: x), [1.0, 0.0])
     with pytest.raises(ValueError, match="fold_coordinates entries must be < 2, got 5"):
         trace(circle, [1.0, 0.0], options=Options(fold_coordinates=(5,)))

@@ -1,0 +1,34 @@
+"""The exceptions of the engine; each failed run's exception carries its partial curve."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the curve type is only named in annotations
+    from .result import Curve
+
+__all__ = ["CallbackError", "CallbackShapeError", "ContinuationError"]
+
+
+class ContinuationError(RuntimeError):
+    """A continuation run failed; ``curve`` holds the partial :class:`Curve`."""
+
+    def __init__(self, message: str, curve: Curve | None = None) -> None:
+        super().__init__(message)
+        self.curve = curve
+
+
+class CallbackError(ContinuationError):
+    """A residual, Jacobian or event function raised an exception.
+
+    ``curve`` holds the points traced before (status ``CALLBACK_FAILED``); the original
+    exception is the ``__cause__``.
+    """
+
+
+class CallbackShapeError(ContinuationError, ValueError):
+    """A residual, Jacobian or event function returned an array of the wrong shape.
+
+    The message names the function, the shape found and the shape expected; ``curve``
+    holds the points traced before (status ``CALLBACK_FAILED``).
+    """

@@ -1,0 +1,189 @@
+"""Hard cases for special-point detection and failure handling: each reproduces a way an
+engine can return a wrong curve with an ok status, and shows the behaviour instead.
+
+Pairs of zeros inside one step, a zero at the start with another in the first step, a fold
+next to a terminal event, events that are not finite, exceptions and wrong shapes from the
+user's functions, and a cusp where ``|H| <= tol`` holds far from the curve.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from continuation import (
+    CallbackError,
+    CallbackShapeError,
+    ContinuationError,
+    Event,
+    Options,
+    Problem,
+    Status,
+    box_events,
+    trace,
+)
+
+#: long steps, so that the special points below fall inside one step
+COARSE = Options(ds=0.5, ds_max=0.5, fold_coordinates=(0,), detect_closed=False)
+
+
+def axis():
+    """The x[0]-axis, ``H(x) = x[1]``: every step is exact, only the events matter."""
+    return Problem(lambda x: np.array([x[1]]), lambda x: np.array([[0.0, 1.0]]))
+
+
+def test_two_zeros_of_an_event_inside_one_step_are_both_found():
+    # (x - 1)^2 - 1e-4 has zeros at 0.99 and 1.01: one step of length 0.5 holds both, and the
+    # event has the same sign at its ends
+    pair = Event("pair", lambda x: (x[0] - 1.0) ** 2 - 1e-4)
+    curve = trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=[pair],
+                  options=COARSE.__class__(ds=0.5, ds_max=0.5, max_arclength=3.0))
+    assert curve.ok
+    zeros = [p.x[0] for p in curve.special("event")]
+    assert zeros == pytest.approx([0.99, 1.01], abs=1e-12)
+
+
+def test_a_symmetric_pair_of_zeros_does_not_cancel():
+    # the groove's validity functions are even in w = sqrt(beta_L): k w^2 - 1 has zeros at
+    # +-1e-3, symmetric about w = 0, crossed by one step from w = 0.2 to w = -0.2
+    even = Event("even", lambda x: 1e6 * x[0] ** 2 - 1.0)
+    curve = trace(axis(), [0.2, 0.0], direction=[-1.0, 0.0], events=[even],
+                  options=Options(ds=0.4, ds_max=0.4, max_arclength=0.4))
+    assert [p.x[0] for p in curve.special("event")] == pytest.approx([1e-3, -1e-3], abs=1e-12)
+
+
+def test_a_zero_at_the_start_is_no_crossing_but_one_in_the_first_step_is():
+    # x (x - 0.01): zero at the start x = 0, whose side is taken from the derivative, and a
+    # second zero at 0.01 inside the first step (same sign at the step's ends as at the start)
+    event = Event("start and near", lambda x: x[0] * (x[0] - 0.01))
+    curve = trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=[event],
+                  options=Options(ds=0.5, ds_max=0.5, max_arclength=1.0))
+    (found,) = curve.special("event")
+    assert found.x[0] == pytest.approx(0.01, abs=1e-12)
+    assert found.index > 0
+
+
+@pytest.mark.parametrize("epsilon", [1e-2, 1e-4, 1e-6])
+def test_a_fold_next_to_a_terminal_event_is_found(epsilon):
+    # x0 = x1^3 - eps x1^2 turns in x0 at x1 = 2 eps / 3 and is stationary at x1 = 0, where the
+    # terminal event ends it: the structure of the groove's rs_no_roll next to its corner
+    problem = Problem(lambda x: np.array([x[0] - x[1] ** 3 + epsilon * x[1] ** 2]),
+                      lambda x: np.array([[1.0, -3.0 * x[1] ** 2 + 2.0 * epsilon * x[1]]]))
+    stop = box_events(lower={1: 0.0})
+    curve = trace(problem, [1.0 - epsilon, 1.0], direction=[0.0, -1.0], events=stop,
+                  options=Options(ds=0.2, ds_max=0.5, fold_coordinates=(0,)))
+    assert curve.status is Status.TERMINAL_EVENT
+    assert curve.x[-1, 1] == pytest.approx(0.0, abs=1e-12)
+    inner = [p for p in curve.special("fold") if p.index < len(curve) - 1]
+    assert len(inner) == 1
+    assert inner[0].x[1] == pytest.approx(2.0 * epsilon / 3.0, rel=1e-9, abs=1e-12)
+
+
+def test_a_fold_inside_a_long_step_is_found_and_the_points_agree():
+    # the circle traced with long steps: every fold in x[0] and x[1] is found, and the points
+    # turn only where a fold is reported
+    circle = Problem(lambda x: np.array([x[0] ** 2 + x[1] ** 2 - 1.0]),
+                     lambda x: np.array([[2.0 * x[0], 2.0 * x[1]]]))
+    curve = trace(circle, [0.6, 0.8], options=Options(ds=0.4, ds_max=0.4, max_angle=1.5,
+                                                       fold_coordinates=(0, 1)))
+    assert curve.status is Status.CLOSED
+    folds = {(round(p.x[0]), round(p.x[1])) for p in curve.special("fold")}
+    assert folds == {(1, 0), (0, 1), (-1, 0), (0, -1)}
+
+
+def test_an_event_that_is_not_finite_ends_the_curve_as_a_failure():
+    hole = Event("hole", lambda x: math.nan if x[0] > 0.7 else x[0] - 2.0)
+    curve = trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=[hole],
+                  options=Options(max_arclength=2.0))
+    assert curve.status is Status.EVENT_NOT_FINITE and not curve.ok
+    assert "hole" in curve.message and "nan" in curve.message
+    assert len(curve) > 1 and np.all(curve.x[:, 0] <= 0.7)
+
+
+def test_an_event_not_finite_at_the_start_is_a_failure():
+    bad = Event("bad", lambda x: math.inf)
+    curve = trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=[bad])
+    assert curve.status is Status.EVENT_NOT_FINITE and "at the start" in curve.message
+
+
+def test_an_event_whose_zero_cannot_be_reached_is_a_failure_not_ok():
+    # the zero of the event at x = 1 lies where the residual is not finite: the step over it
+    # cannot be resolved, and the curve ends before it with a failure status
+    def residual(x):
+        return np.array([x[1] if abs(x[0] - 1.0) > 1e-3 else math.nan])
+
+    problem = Problem(residual, lambda x: np.array([[0.0, 1.0]]))
+    curve = trace(problem, [0.0, 0.0], direction=[1.0, 0.0],
+                  events=[Event("x = 1", lambda x: x[0] - 1.0)],
+                  options=Options(ds=0.5, ds_max=0.5, ds_min=1e-6, max_arclength=3.0))
+    assert not curve.ok
+    assert curve.status in (Status.NOT_LOCATED, Status.NON_FINITE)
+    assert np.all(curve.x[:, 0] < 1.0)
+
+
+def test_an_exception_in_the_residual_keeps_the_partial_curve():
+    def residual(x):
+        if x[0] > 0.5:
+            raise ZeroDivisionError("model undefined here")
+        return np.array([x[1] - x[0] ** 2])
+
+    problem = Problem(residual, lambda x: np.array([[-2.0 * x[0], 1.0]]))
+    with pytest.raises(CallbackError, match="residual\\(x\\) raised ZeroDivisionError") as info:
+        trace(problem, [-1.0, 1.0], direction=[1.0, 0.0])
+    error = info.value
+    assert isinstance(error, ContinuationError)
+    assert isinstance(error.__cause__, ZeroDivisionError)
+    curve = error.curve
+    assert curve.status is Status.CALLBACK_FAILED and not curve.ok
+    assert len(curve) > 5 and np.all(curve.x[:, 0] <= 0.5)
+    assert np.all(np.abs(curve.x[:, 1] - curve.x[:, 0] ** 2) <= 1e-10)
+
+
+def test_an_exception_in_an_event_names_the_event():
+    def event(x):
+        if x[0] > 0.3:
+            raise KeyError("missing")
+        return 1.0
+
+    with pytest.raises(CallbackError, match="event 'fragile' raised KeyError") as info:
+        trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=[Event("fragile", event)])
+    assert len(info.value.curve) >= 1
+
+
+@pytest.mark.parametrize("which, pattern", [
+    ("residual", r"residual\(x\) returned shape \(2,\), expected \(1,\) \(n = 1 equations"),
+    ("jacobian", r"jacobian\(x\) returned shape \(2, 2\), expected \(1, 2\)"),
+])
+def test_a_wrong_shape_mid_curve_names_the_function_and_the_shapes(which, pattern):
+    def residual(x):
+        value = np.array([x[1] - x[0]])
+        return np.append(value, 0.0) if which == "residual" and x[0] > 0.5 else value
+
+    def jacobian(x):
+        value = np.array([[-1.0, 1.0]])
+        return np.vstack([value, value]) if which == "jacobian" and x[0] > 0.5 else value
+
+    with pytest.raises(CallbackShapeError, match=pattern) as info:
+        trace(Problem(residual, jacobian), [0.0, 0.0], direction=[1.0, 1.0])
+    assert isinstance(info.value, ValueError)
+    curve = info.value.curve
+    assert curve.status is Status.CALLBACK_FAILED and len(curve) >= 2
+    assert np.all(curve.x[:, 0] <= 0.5)
+
+
+def test_no_point_off_the_curve_is_accepted_at_a_cusp():
+    # y^2 = x^3 has a cusp at the origin, where H' = 0: near it |H| <= tol holds far from the
+    # curve (at x = -1e-4, y = 0 it is 1e-12), and only the size of the Newton correction
+    # tells; a corrector that accepts its last iterate with |H| <= tol after Newton failed
+    # walks past the cusp into x < 0, where there is no curve at all
+    problem = Problem(lambda x: np.array([x[1] ** 2 - x[0] ** 3]),
+                      lambda x: np.array([[-3.0 * x[0] ** 2, 2.0 * x[1]]]))
+    curve = trace(problem, [1.0, 1.0], direction=[-1.0, -1.0],
+                  options=Options(max_arclength=3.0))
+    x, y = curve.x[:, 0], curve.x[:, 1]
+    # within the cusp's own neighbourhood (where H' ~ r^2 makes every point within ~1e-7
+    # indistinguishable at tol = 1e-10) the points stay on the real curve |y| = x^(3/2)
+    nearest = np.hypot(np.minimum(x, 0.0), np.abs(y) - np.maximum(x, 0.0) ** 1.5)
+    assert np.all(nearest <= 1e-6)
+    # and the run does not pass the cusp as if nothing happened
+    assert curve.status is Status.STEP_TOO_SMALL
