@@ -42,7 +42,7 @@ def test_csv_columns_and_rows_satisfy_their_equations(written):
             assert np.allclose(rows["theta_L"], rows["gamma"] + rows["delta"], atol=1e-15)
             assert np.all(np.diff(rows["s"]) > 0)
         assert set(frame["point"]) - {""} <= {"start", "end", "junction", "fold_gamma",
-                                             "branch_point"}
+                                             "fold_delta", "branch_point"}
 
 
 def test_committed_results_are_reproduced(written):
