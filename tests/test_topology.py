@@ -1,0 +1,80 @@
+"""The expected topology per k: thresholds computed from the equations, and the tracer's use
+of them (a curve that differs from it is a failure, never an ok)."""
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from continuation import Options
+from groove_model import topology
+from groove_model.parameters import Compliance, Parameters
+from groove_model.topology import expected_topology, thresholds
+from groove_model.tracer import DEFAULT_OPTIONS, Where, trace_boundaries
+
+
+@pytest.mark.parametrize("c", [0.5, 2.0 / 3.0, 1.0, 1.7])
+def test_thresholds_match_their_closed_forms(c):
+    # k_fold: at the seed a tangent without gamma component needs tan^2 beta = 2
+    # (linearised right-rolling equation); k_branch: the seed arctan(k/c) meets arctan sqrt 2
+    t = thresholds(c)
+    assert t.k_fold == pytest.approx(c / math.sqrt(2.0), rel=4e-15)
+    assert t.k_branch == pytest.approx(c * math.sqrt(2.0), rel=4e-15)
+
+
+def test_the_docstring_table_quotes_the_computed_thresholds():
+    t = thresholds(1.0)
+    quoted = dict(re.findall(r"``(k_fold|k_branch)``\s+(\d\.\d+)", topology.__doc__))
+    assert float(quoted["k_fold"]) == pytest.approx(t.k_fold, abs=1e-14)
+    assert float(quoted["k_branch"]) == pytest.approx(t.k_branch, abs=1e-14)
+
+
+@pytest.mark.parametrize("k, branch, fold", [
+    (0.1, False, False), (0.8, False, True), (1.0, False, True), (2.0, True, True),
+    (1e5, True, True)])
+def test_expected_topology_by_range(k, branch, fold):
+    expected = expected_topology(Parameters(k))
+    assert expected["dr_limit"].junctions == int(branch)
+    assert expected["dr_no_roll"].present is branch
+    assert expected["rs_no_roll"].start == ("junction" if branch else "seed")
+    assert expected["rs_no_roll"].folds_gamma == int(fold)
+    assert expected["dr_limit"].folds_delta == 1 and expected["dr_limit"].folds_gamma == 0
+
+
+def test_within_the_band_of_a_threshold_either_topology_is_accepted():
+    k = math.sqrt(2.0) * (1.0 + 1e-12)
+    expected = expected_topology(Parameters(k))
+    assert expected["dr_limit"].junctions is None and expected["dr_no_roll"].present is None
+    assert expected_topology(Parameters(1 / math.sqrt(2.0)))["rs_no_roll"].folds_gamma is None
+
+
+def test_thresholds_scale_with_the_compliance_ratio():
+    params = Parameters(0.6, Compliance(2.0 / 3.0))
+    # 0.6 lies between c/sqrt 2 = 0.471 and c sqrt 2 = 0.943: a fold, no junction
+    expected = expected_topology(params)
+    assert expected["rs_no_roll"].folds_gamma == 1 and expected["dr_limit"].junctions == 0
+
+
+def test_a_curve_that_stops_short_is_a_failure_with_a_message():
+    # too few steps: the engine stops normally (max_steps), but not where the curve must end
+    options = Options(**{**DEFAULT_OPTIONS.__dict__, "max_steps": 5})
+    bs = trace_boundaries(10.0, options=options)
+    assert not bs.ok
+    dr = bs.curves["dr_limit"]
+    assert not dr.ok and "expected gamma_min" in dr.status
+    assert "differs from the expected topology for k = 10.0" in dr.status
+
+
+def test_every_traced_curve_says_where_it_starts_and_ends():
+    bs = trace_boundaries(10.0)
+    where = {name: (c.start, c.end) for name, c in bs.curves.items()}
+    assert where == {"dr_limit": (Where.SEED, Where.GAMMA_MIN),
+                     "rs_limit": (Where.SEED, Where.GAMMA_MIN),
+                     "dr_no_roll": (Where.BRANCH_POINT, Where.JUNCTION),
+                     "rs_no_roll": (Where.JUNCTION, Where.CORNER)}
+    # one junction, shared exactly by the three curves that meet there
+    junction = bs.curves["dr_limit"].special("junction")[0].x
+    assert np.array_equal(bs.curves["dr_no_roll"].x[-1], junction)
+    assert np.array_equal(bs.curves["rs_no_roll"].x[0], junction)
+    assert junction[2] == pytest.approx(math.atan(0.1), abs=1e-15)  # T/N_L = cot beta_L = k
