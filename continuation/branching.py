@@ -11,9 +11,9 @@ import numpy as np
 
 from .events import Event
 from .options import Options
-from .problem import Evaluator, Problem
-from .result import Curve, SpecialPoint
-from .tracker import SINGULAR_RATIO, _as_vector, _trace
+from .problem import Evaluator, Problem, as_vector
+from .result import Curve, SpecialKind, SpecialPoint
+from .tracker import SINGULAR_RATIO, follow
 
 __all__ = ["branch_tangents", "locate_branch_point", "switch_branch"]
 
@@ -73,7 +73,7 @@ def branch_tangents(problem: Problem, x_bp: np.ndarray) -> tuple[np.ndarray, np.
     ``Q = [[a, b], [b, c]]`` with eigenvalues ``l1 < 0 < l2`` the roots are
     ``(sqrt(l2), +-sqrt(-l1))``.
     """
-    return _branch_tangents(Evaluator(problem), _as_vector("x_bp", x_bp))
+    return _branch_tangents(Evaluator(problem), as_vector("x_bp", x_bp))
 
 
 def _branch_tangents(evaluator: Evaluator, x: np.ndarray):
@@ -156,7 +156,7 @@ def locate_branch_point(
     space.
     """
     options = Options() if options is None else options
-    return _locate_branch_point(Evaluator(problem), problem, _as_vector("x_approx", x_approx),
+    return _locate_branch_point(Evaluator(problem), problem, as_vector("x_approx", x_approx),
                                 options, radius)
 
 
@@ -179,7 +179,7 @@ def _locate_branch_point(evaluator, problem, x_approx, options, radius):
                     raise_on_failure=False)
     candidates = []
     for direction in (1, -1):
-        curve = _trace(problem, x, direction, local, (), None, evaluator)
+        curve = follow(problem, x, direction, local, evaluator=evaluator)
         candidates.extend(curve.special("branch_point"))
     if not candidates:
         raise ValueError(
@@ -236,7 +236,6 @@ def switch_branch(
     options: Options | None = None,
     events: Sequence[Event] = (),
     tangent_hint: np.ndarray | None = None,
-    branch: Curve | None = None,
 ) -> Curve:
     """Follow the other branch through a simple branch point.
 
@@ -250,26 +249,23 @@ def switch_branch(
         is located first with :func:`locate_branch_point`. An array that is
         already a branch point to rounding (``max |H| <= tol`` and
         ``sigma_min(H') <= 64 eps sigma_max(H')``) is used as it is when the
-        branch is chosen by a ``direction`` array, ``tangent_hint`` or
-        ``branch``.
+        branch is chosen by a ``direction`` array or ``tangent_hint``.
     direction : {None, 1, -1} or array_like of shape (n + 1,), optional
         Orientation of the new branch: ``None``/``+1`` along its tangent
         normalised so that its largest-magnitude component is positive, ``-1``
         the opposite way; an array: positive dot product with it. For an
-        array ``x_bp`` without ``tangent_hint`` or ``branch``, an array
-        direction also chooses the branch: the one most nearly parallel to it.
-        Otherwise the new branch is the one other than the current branch
-        (the SpecialPoint's tangent, ``tangent_hint``, ``branch``, or the
-        branch along which an array ``x_bp`` was located).
+        array ``x_bp`` without ``tangent_hint``, an array direction also
+        chooses the branch: the one most nearly parallel to it. Otherwise the
+        new branch is the one other than the current branch (the
+        SpecialPoint's tangent, ``tangent_hint``, or the branch along which an
+        array ``x_bp`` was located).
     options : Options, optional
         Options of the new trace.
     events : sequence of Event, optional
         Events of the new trace.
     tangent_hint : array_like of shape (n + 1,), optional
-        Tangent of the current branch (overrides the one from ``x_bp``).
-    branch : Curve, optional
-        The current branch; its tangent at the point nearest ``x_bp`` is the
-        hint if none is given otherwise.
+        Tangent of the current branch (overrides the one from ``x_bp``), e.g.
+        ``curve.tangents[i]`` at the point of the traced curve nearest ``x_bp``.
 
     Returns
     -------
@@ -295,35 +291,50 @@ def switch_branch(
     evaluator = Evaluator(problem)
     reference = None
     if direction is not None and not isinstance(direction, (int, np.integer)):
-        reference = _as_vector("direction", direction)
+        reference = as_vector("direction", direction)
     elif direction not in (None, 1, -1):
         raise ValueError(f"direction must be None, 1, -1 or an array, got {direction!r}")
+    hint = None if tangent_hint is None else as_vector("tangent_hint", tangent_hint)
     if isinstance(x_bp, SpecialPoint):
-        x, accuracy, hint = x_bp.x.copy(), x_bp.accuracy, x_bp.tangent
+        x, accuracy, found = x_bp.x.copy(), x_bp.accuracy, x_bp.tangent
     else:
-        x_given = _as_vector("x_bp", x_bp)
-        exact = None
-        if reference is not None or tangent_hint is not None or branch is not None:
-            # the branch is chosen without the search's branch, so an exact
-            # branch point (e.g. an analytic one) needs no search
-            exact = _exact_branch_point(evaluator, x_given, options)
-        if exact is not None:
-            x, accuracy, hint = x_given.copy(), exact, None
-        else:
-            located = _locate_branch_point(evaluator, problem, x_given, options, None)
-            # the branch the search happened to run along is a guess of the current
-            # one; a direction array is the caller's explicit choice and wins
-            x, accuracy = located.x, located.accuracy
-            hint = located.tangent if reference is None else None
+        x, accuracy, found = _branch_point(evaluator, problem, as_vector("x_bp", x_bp), options,
+                                           reference is not None or hint is not None)
     if reference is not None and reference.shape != x.shape:
         raise ValueError(f"direction must be None, 1, -1 or an array of shape {x.shape}, got "
                          f"{direction!r}")
-    if branch is not None and tangent_hint is None:
-        nearest = int(np.argmin(np.linalg.norm(branch.x - x, axis=1)))
-        hint = branch.tangents[nearest]
-    if tangent_hint is not None:
-        hint = _as_vector("tangent_hint", tangent_hint)
-    first, second = _branch_tangents(evaluator, x)
+    # the branch a search happened to run along is a guess of the current one; a direction
+    # array or tangent_hint is the caller's explicit choice and wins
+    if hint is None and not (reference is not None and not isinstance(x_bp, SpecialPoint)):
+        hint = found
+    new = _new_branch_tangent(*_branch_tangents(evaluator, x), hint, reference, direction)
+    logger.info("switching branch at x=%s along tangent %s", problem.describe(x), new)
+    return follow(problem, x, None, options, events, new, evaluator=evaluator,
+                  start_mark=(SpecialKind.BRANCH_POINT, "branch point", accuracy),
+                  at_branch_point=True)
+
+
+def _branch_point(evaluator: Evaluator, problem: Problem, x_given: np.ndarray,
+                  options: Options, chosen: bool):
+    """``(x, accuracy, tangent of the branch it was found on or None)`` for an array.
+
+    With the branch ``chosen`` by the caller an exact branch point (e.g. an analytic one) is
+    used as given; otherwise it is located along the curve through ``x_given``.
+    """
+    exact = _exact_branch_point(evaluator, x_given, options) if chosen else None
+    if exact is not None:
+        return x_given.copy(), exact, None
+    located = _locate_branch_point(evaluator, problem, x_given, options, None)
+    return located.x, located.accuracy, located.tangent
+
+
+def _new_branch_tangent(first: np.ndarray, second: np.ndarray, hint, reference, direction):
+    """The oriented tangent of the new branch among the two branch tangents.
+
+    With the current branch's tangent ``hint`` the new one is the less parallel to it;
+    otherwise the one more parallel to the ``reference`` direction. Oriented along
+    ``reference``, else with its largest component positive (times ``direction``).
+    """
     if hint is not None:
         new = first if abs(float(first @ hint)) < abs(float(second @ hint)) else second
     elif reference is not None:
@@ -331,15 +342,11 @@ def switch_branch(
             else second
     else:
         raise ValueError("cannot tell the new branch from the current one: pass a SpecialPoint "
-                         "from a traced curve, tangent_hint=, branch= or a direction array")
+                         "from a traced curve, tangent_hint= or a direction array")
     if reference is not None:
         dot = float(new @ reference)
         if dot == 0:
             raise ValueError("direction is orthogonal to the new branch's tangent")
-        new = new if dot > 0 else -new
-    else:
-        largest = int(np.argmax(np.abs(new)))
-        new = new * (math.copysign(1.0, new[largest]) * (1 if direction is None else direction))
-    logger.info("switching branch at x=%s along tangent %s", problem.describe(x), new)
-    return _trace(problem, x, None, options, events, new, evaluator,
-                  ("branch_point", "branch point", accuracy), at_branch_point=True)
+        return new if dot > 0 else -new
+    largest = int(np.argmax(np.abs(new)))
+    return new * (math.copysign(1.0, new[largest]) * (1 if direction is None else direction))

@@ -1,21 +1,16 @@
-"""Newton corrector on the Keller pseudo-arclength (bordered) system.
-
-Also the two small geometric helpers the corrector's callers share: the
-cubic Hermite arc between two curve points, used to predict trial points
-inside an accepted step, and the tangent at a point.
-"""
+"""Newton corrector on the Keller pseudo-arclength (bordered) system, and the tangent at a point."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from scipy.linalg.lapack import dgetrf, dgetrs
 
+from .linalg import all_finite, factor_bordered, lu_determinant, lu_solve, max_abs, norm
+from .options import Newton
 from .problem import Evaluator
-from .small import all_finite, max_abs, norm
 
-__all__ = ["Correction", "correct", "hermite", "tangent_at"]
+__all__ = ["Correction", "correct", "tangent_at"]
 
 #: reasons a correction fails, used in log and status messages
 NON_FINITE = "non-finite residual or Jacobian"
@@ -86,37 +81,12 @@ class Correction:
         self.contraction = contraction
 
 
-def _factor(jacobian: np.ndarray, border: np.ndarray):
-    """LU-factor the bordered matrix ``[J; border^T]``; ``None`` if singular."""
-    n = jacobian.shape[0]
-    bordered = np.empty((n + 1, n + 1))
-    bordered[:n] = jacobian
-    bordered[n] = border
-    lu, piv, info = dgetrf(bordered, overwrite_a=1)
-    if info != 0:
-        return None
-    return lu, piv
-
-
-def _signed_det(lu: np.ndarray, piv: np.ndarray) -> float:
-    """Determinant from an LU factorisation ``P A = L U`` (LAPACK pivots)."""
-    det = 1.0
-    swaps = 0
-    for i in range(piv.size):
-        det *= lu[i, i]
-        swaps += piv[i] != i
-    return float(-det if swaps % 2 else det)
-
-
 def correct(
     evaluator: Evaluator,
     x_pred: np.ndarray,
     border: np.ndarray,
+    newton: Newton,
     *,
-    tol: float,
-    xtol: float,
-    max_newton: int,
-    max_contraction: float,
     max_correction: float = math.inf,
     target: float | None = None,
     need_tangent: bool = True,
@@ -134,15 +104,10 @@ def correct(
         Predicted point, the first iterate.
     border : ndarray, shape (n + 1,)
         Border row ``b``; the corrected point satisfies ``b^T x = target``.
-    tol : float
-        Residual tolerance, ``max |H(x)| <= tol``.
-    xtol : float
-        Correction tolerance, ``max |dx| <= xtol (1 + max |x|)``.
-    max_newton : int
-        Maximum number of Newton steps.
-    max_contraction : float
-        Largest accepted ratio ``|dx_(k+1)| / |dx_k|`` while ``|dx|`` is above
-        the correction tolerance.
+    newton : Newton
+        Tolerances ``tol`` (of ``max |H|``) and ``xtol`` (of ``max |dx| / (1 + max |x|)``),
+        the most iterations, and the largest accepted ratio of consecutive corrections
+        while ``|dx|`` is above its tolerance.
     max_correction : float, optional
         Largest accepted 2-norm of a correction; a longer one is not applied
         (the iterate is returned if its residual is within ``tol``, else the
@@ -206,16 +171,13 @@ def correct(
     n1 = x_pred.size
     if target is None:
         target = float(border @ x_pred)
+    tol, xtol, max_newton = newton.tol, newton.xtol, newton.max_iterations
     x = x_pred
     H = evaluator.residual(x) if residual is None else residual
     if not all_finite(H):
         return Correction(False, NON_FINITE, x, None, 0.0, math.inf, 0, 0.0, 0.0)
     J = evaluator.jacobian(x) if jacobian is None else jacobian
-    # one right-hand side per LAPACK call: with two, OpenBLAS's threaded triangular
-    # solve costs milliseconds on a 4 x 4 system whenever a core is busy
     rhs = np.empty(n1)
-    unit = np.zeros(n1)
-    unit[n1 - 1] = 1.0
     first = 0.0
     contraction = 0.0
     previous = math.inf
@@ -238,9 +200,7 @@ def correct(
             # Chord step with the factors of an earlier iterate (Deuflhard's
             # simplified Newton correction): it is taken while it contracts at
             # least CHORD_RATE-fold, and it also estimates the distance to the curve
-            rhs[: n1 - 1] = -H
-            rhs[n1 - 1] = target - float(border @ x)
-            dx = dgetrs(factors[0], factors[1], rhs)[0]
+            dx = _solve(factors, rhs, H, border, target, x)
             dnorm = max_abs(dx)
             converged = rnorm <= tol and dnorm <= scale
             if converged and not need_tangent:
@@ -249,8 +209,7 @@ def correct(
             if not converged and dnorm <= CHORD_RATE * previous and k < max_newton:
                 if k == 1:
                     contraction = dnorm / max(previous, 1e-300)
-                length = norm(dx)
-                if length > max_correction:
+                if norm(dx) > max_correction:
                     return failure(TOO_FAR, rnorm, k)
                 previous = dnorm
                 x = x + dx
@@ -259,12 +218,10 @@ def correct(
             J = evaluator.jacobian(x)
         if not all_finite(J):
             return failure(NON_FINITE, rnorm, k)
-        factors = _factor(J, border)
+        factors = factor_bordered(J, border)
         if factors is None:
             return failure(SINGULAR, rnorm, k)
-        rhs[: n1 - 1] = -H
-        rhs[n1 - 1] = target - float(border @ x)
-        dx = dgetrs(factors[0], factors[1], rhs)[0]
+        dx = _solve(factors, rhs, H, border, target, x)
         dnorm = max_abs(dx)
         if not dnorm < math.inf:
             return failure(SINGULAR, rnorm, k)
@@ -275,17 +232,13 @@ def correct(
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
         if rnorm <= tol:
-            v = dgetrs(factors[0], factors[1], unit)[0]
-            vnorm = norm(v)
-            border_det = _signed_det(*factors)
-            converged = Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first,
-                                   contraction, border_det)
+            converged = _with_tangent(factors, x, rnorm, k, first, contraction)
             if small:
                 return converged
             fallback = converged
         if length > max_correction:
             return failure(TOO_FAR, rnorm, k)
-        if k > 0 and not small and dnorm > max_contraction * previous:
+        if k > 0 and not small and dnorm > newton.max_contraction * previous:
             return failure(DIVERGING, rnorm, k, dnorm / max(previous, 1e-300))
         if k == max_newton:
             break
@@ -294,6 +247,26 @@ def correct(
         H = evaluator.residual(x)
         J = None
     return failure(NO_CONVERGENCE, rnorm, max_newton)
+
+
+def _solve(factors, rhs: np.ndarray, H: np.ndarray, border: np.ndarray, target: float,
+           x: np.ndarray) -> np.ndarray:
+    """The Newton correction ``dx`` of the bordered system at ``x``."""
+    n = rhs.size - 1
+    rhs[:n] = -H
+    rhs[n] = target - float(border @ x)
+    return lu_solve(factors, rhs)
+
+
+def _with_tangent(factors, x, rnorm, k, first, contraction) -> Correction:
+    """A converged correction with the tangent and determinant from the bordered factors."""
+    unit = np.zeros(x.size)
+    unit[-1] = 1.0
+    v = lu_solve(factors, unit)
+    vnorm = norm(v)
+    border_det = lu_determinant(*factors)
+    return Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first, contraction,
+                      border_det)
 
 
 def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):
@@ -318,47 +291,13 @@ def tangent_at(evaluator: Evaluator, x: np.ndarray, border: np.ndarray):
     J = evaluator.jacobian(x)
     if not all_finite(J):
         return None, 0.0
-    factors = _factor(J, border)
+    factors = factor_bordered(J, border)
     if factors is None:
         return None, 0.0
     rhs = np.zeros(x.size)
     rhs[-1] = 1.0
-    v, _ = dgetrs(factors[0], factors[1], rhs)
+    v = lu_solve(factors, rhs)
     vnorm = norm(v)
     if not 0 < vnorm < math.inf:
         return None, 0.0
-    return v / vnorm, vnorm * _signed_det(*factors)
-
-
-def hermite(x_a, t_a, x_b, t_b, h, sigma):
-    """Cubic Hermite arc between two curve points and its derivative.
-
-    Parameters
-    ----------
-    x_a, x_b : ndarray, shape (n + 1,)
-        End points, ``h`` apart in pseudo-arclength.
-    t_a, t_b : ndarray, shape (n + 1,)
-        Unit tangents (derivatives with respect to arclength) at the ends.
-    h : float
-        Pseudo-arclength between the ends.
-    sigma : float
-        Pseudo-arclength from ``x_a``, ``0 <= sigma <= h``.
-
-    Returns
-    -------
-    point, derivative : ndarray, shape (n + 1,)
-        ``p(sigma)`` and ``p'(sigma)``; ``|p - x(s_a + sigma)| = O(h^4)``.
-
-    Notes
-    -----
-    ``p = h00 x_a + h10 h t_a + h01 x_b + h11 h t_b`` with the cubic Hermite
-    basis of ``u = sigma / h`` (de Boor, *A Practical Guide to Splines*).
-    """
-    u = sigma / h
-    u2 = u * u
-    u3 = u2 * u
-    point = ((2 * u3 - 3 * u2 + 1) * x_a + (u3 - 2 * u2 + u) * h * t_a
-             + (-2 * u3 + 3 * u2) * x_b + (u3 - u2) * h * t_b)
-    derivative = ((6 * u2 - 6 * u) / h * x_a + (3 * u2 - 4 * u + 1) * t_a
-                  + (-6 * u2 + 6 * u) / h * x_b + (3 * u2 - 2 * u) * t_b)
-    return point, derivative
+    return v / vnorm, vnorm * lu_determinant(*factors)

@@ -19,12 +19,13 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from .corrector import SINGULAR, Correction, _factor, _signed_det, correct, hermite, tangent_at
+from .corrector import SINGULAR, Correction, correct, tangent_at
 from .errors import CallbackError
 from .events import Event, crossed
+from .linalg import all_finite, factor_bordered, lu_determinant, max_abs, norm
 from .options import Options
+from .predictor import hermite
 from .problem import Evaluator
-from .small import all_finite, max_abs, norm
 
 __all__ = [
     "EventNotFinite",
@@ -252,9 +253,7 @@ class StepScan:
         point, derivative = hermite(lo.x, lo.tangent, hi.x, hi.tangent, width, s - lo.s)
         border = derivative / norm(derivative)
         options = self.options
-        result = correct(self.evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                         max_newton=options.max_newton,
-                         max_contraction=options.newton_contraction,
+        result = correct(self.evaluator, point, border, options.locate_newton,
                          max_correction=JUMP * width, accept_fallback=True)
         if not result.ok or result.tangent is None:
             raise LocateError(f"point at s={s!r} inside the step not corrected: {result.reason}")
@@ -478,9 +477,7 @@ def locate_zero(
             # matrix; one a hair beside it (the zero is then refined) does not
             point, derivative = hermite(x_a, t_a, x_b, t_b, s_b - s_a, s + nudge - s_a)
             border = derivative / norm(derivative)
-            result = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                             max_newton=options.max_newton,
-                             max_contraction=options.newton_contraction,
+            result = correct(evaluator, point, border, options.locate_newton,
                              max_correction=JUMP * (s_b - s_a), need_tangent=need_tangent,
                              accept_fallback=True)
             if result.ok or result.reason != SINGULAR:
@@ -619,9 +616,7 @@ def refine_branch_point(
         h = end.s - start.s
         point, derivative = hermite(start.x, start.tangent, end.x, end.tangent, h, s - start.s)
         border = derivative / norm(derivative)
-        node = correct(evaluator, point, border, tol=options.tol, xtol=options.event_tol,
-                       max_newton=options.max_newton,
-                       max_contraction=options.newton_contraction,
+        node = correct(evaluator, point, border, options.locate_newton,
                        max_correction=JUMP * distance, accept_fallback=True)
         if not node.ok:
             return located
@@ -636,10 +631,10 @@ def refine_branch_point(
     def determinant(s: float) -> float:
         point, border = on_arc(s)
         jacobian = evaluator.jacobian(point)
-        factors = _factor(jacobian, border) if all_finite(jacobian) else None
+        factors = factor_bordered(jacobian, border) if all_finite(jacobian) else None
         if factors is None:
             return 0.0
-        return _signed_det(*factors)
+        return lu_determinant(*factors)
 
     f_a, f_b = determinant(s_a), determinant(s_b)
     if not f_a * f_b < 0:

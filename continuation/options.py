@@ -5,8 +5,31 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
+from functools import cached_property
 
-__all__ = ["Options"]
+__all__ = ["Newton", "Options"]
+
+
+@dataclass(frozen=True)
+class Newton:
+    """The settings of one Newton correction, passed whole to the corrector.
+
+    Parameters
+    ----------
+    tol : float
+        Residual tolerance, ``max |H(x)| <= tol``.
+    xtol : float
+        Correction tolerance, ``max |dx| <= xtol (1 + max |x|)``.
+    max_iterations : int
+        Most Newton steps.
+    max_contraction : float
+        Largest accepted ratio ``|dx_(k+1)| / |dx_k|`` of consecutive corrections.
+    """
+
+    tol: float
+    xtol: float
+    max_iterations: int
+    max_contraction: float
 
 
 @dataclass(frozen=True)
@@ -87,6 +110,16 @@ class Options:
     detect_branch_points: bool = True
     detect_closed: bool = True
     raise_on_failure: bool = False
+
+    @cached_property
+    def newton(self) -> Newton:
+        """The corrector's settings for curve points: ``xtol = tol``."""
+        return Newton(self.tol, self.tol, self.max_newton, self.newton_contraction)
+
+    @cached_property
+    def locate_newton(self) -> Newton:
+        """The corrector's settings for located points: ``xtol = event_tol``."""
+        return Newton(self.tol, self.event_tol, self.max_newton, self.newton_contraction)
 
     def __post_init__(self) -> None:
         for name in ("tol", "ds", "ds_min", "ds_max", "max_correction", "event_tol"):

@@ -14,7 +14,7 @@ import numpy as np
 
 from .errors import CallbackError, CallbackShapeError
 
-__all__ = ["Problem", "check_jacobian", "finite_difference_jacobian"]
+__all__ = ["Evaluator", "Problem", "as_vector", "check_jacobian", "finite_difference_jacobian"]
 
 logger = logging.getLogger(__name__)
 
@@ -80,6 +80,14 @@ class Problem:
         return "(" + ", ".join(
             f"{self.coordinate_name(i)}={value:.10g}" for i, value in enumerate(x)
         ) + ")"
+
+
+def as_vector(name: str, value) -> np.ndarray:
+    """``value`` as a finite 1-D float array, or a ``ValueError`` naming ``name``."""
+    array = np.array(value, dtype=float)
+    if array.ndim != 1 or not np.isfinite(array).all():
+        raise ValueError(f"{name} must be a finite 1-D array, got {value!r}")
+    return array
 
 
 def finite_difference_jacobian(

@@ -8,9 +8,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .corrector import correct, hermite
+from .corrector import correct
 from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .options import Options
+from .predictor import hermite
 from .problem import Evaluator, Problem
 
 __all__ = [
@@ -296,9 +297,7 @@ class Curve:
 
     def _correct(self, point, border, target, where) -> np.ndarray:
         options = self.options or Options()
-        result = correct(Evaluator(self.problem), point, border, tol=options.tol,
-                         xtol=options.event_tol, max_newton=options.max_newton,
-                         max_contraction=options.newton_contraction, target=target,
+        result = correct(Evaluator(self.problem), point, border, options.locate_newton, target=target,
                          need_tangent=False)
         if not result.ok:
             raise ValueError(f"could not correct the point at {where} onto the curve: "

@@ -13,7 +13,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from .corrector import NON_FINITE, SINGULAR, Correction, correct, hermite
+from .corrector import NON_FINITE, SINGULAR, Correction, correct
 from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .events import Event, crossed
 from .locate import (
@@ -27,11 +27,11 @@ from .locate import (
     refine_branch_point,
 )
 from .options import Options
-from .problem import Evaluator, Problem
+from .predictor import arc_length, extrapolate, hermite
+from .problem import Evaluator, Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
-from .small import norm
 
-__all__ = ["trace"]
+__all__ = ["follow", "trace"]
 
 logger = logging.getLogger(__name__)
 
@@ -46,10 +46,6 @@ BRANCH_TANGENT_NOISE = 1e-7
 
 #: a closing point must lie this close (relative to 1 + max|x0|) to the start
 CLOSE_TOLERANCE = 1e-6
-
-
-#: accepted curve points are scan nodes (the name the predictor's tests use)
-_Point = Node
 
 
 class _Run:
@@ -207,13 +203,27 @@ def trace(
     ``det [H'; t^T]``, Allgower & Georg, sec. 8.1) are located by
     :func:`continuation.events.locate_zero` and inserted into the curve.
     """
-    return _trace(problem, x0, direction, options, events, tangent)
+    return follow(problem, x0, direction, options, events, tangent)
 
 
-def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
-           start_kind=("start", "start", None), at_branch_point=False):
-    """:func:`trace` with a shared evaluator, the start's special-point kind and
-    whether the start is a located branch point (then it is not corrected)."""
+def follow(problem: Problem, x0, direction=None, options: Options | None = None,
+           events: Sequence[Event] = (), tangent=None, *, evaluator: Evaluator | None = None,
+           start_mark: tuple = (SpecialKind.START, "start", 0.0),
+           at_branch_point: bool = False) -> Curve:
+    """:func:`trace` with the hooks branch switching needs.
+
+    Parameters
+    ----------
+    problem, x0, direction, options, events, tangent
+        As for :func:`trace`.
+    evaluator : Evaluator, optional
+        A counting evaluator shared with earlier work (its counts go into the curve).
+    start_mark : tuple
+        ``(kind, name, accuracy)`` of the start's special point, e.g. a branch point.
+    at_branch_point : bool
+        ``x0`` is a located branch point and ``tangent`` the new branch's: the start is not
+        corrected (the bordered matrix is singular there).
+    """
     if not isinstance(problem, Problem):
         raise TypeError(f"problem must be a Problem, got {type(problem).__name__}")
     options = Options() if options is None else options
@@ -223,7 +233,7 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
     for event in events:
         if not isinstance(event, Event):
             raise TypeError(f"events must be Event instances, got {type(event).__name__}")
-    x0 = _as_vector("x0", x0)
+    x0 = as_vector("x0", x0)
     n1 = x0.size
     if n1 < 2:
         raise ValueError(f"x0 must have n + 1 >= 2 coordinates, got {n1}")
@@ -236,125 +246,135 @@ def _trace(problem, x0, direction, options, events, tangent, evaluator=None,
     evaluator.expect(n1)
     run = _Run(problem, options, events, evaluator)
     try:
-        return _follow(run, x0, direction, tangent, start_kind, at_branch_point)
+        try:
+            start, status, message = _start(run, x0, direction, tangent, at_branch_point)
+        except EventNotFinite as error:
+            return run.curve(Status.EVENT_NOT_FINITE, f"at the start: {error}", n1)
+        if start is None:
+            return run.curve(status, message, n1)
+        index = run.append(start.x, 0.0, start.tangent, start.residual, start.iterations)
+        run.mark(start_mark[0], start_mark[1], index, start_mark[2] or 0.0)
+        stepper = _Stepper(run, start)
+        while not stepper.check_terminated():
+            stepper.step()
+        return run.curve(stepper.status, stepper.message, n1)
     except (CallbackError, CallbackShapeError) as error:
         # the user's function failed: the exception carries what was traced before
         error.curve = run.curve(Status.CALLBACK_FAILED, str(error), n1, raise_failure=False)
         raise
 
 
-def _follow(run: _Run, x0, direction, tangent, start_kind, at_branch_point) -> Curve:
-    """The predict-correct loop of :func:`trace` from a checked start."""
-    problem, options, evaluator, n1 = run.problem, run.options, run.evaluator, x0.size
-    try:
-        start, status, message = _start(run, x0, direction, tangent, at_branch_point)
-    except EventNotFinite as error:
-        return run.curve(Status.EVENT_NOT_FINITE, f"at the start: {error}", n1)
-    if start is None:
-        return run.curve(status, message, n1)
-    index = run.append(start.x, 0.0, start.tangent, start.residual, start.iterations)
-    run.mark(start_kind[0], start_kind[1], index, start_kind[2] or 0.0)
+class _Stepper:
+    """The state of a run between steps: the point, the predictor's nodes, the step size."""
 
-    point = start
-    ds = options.ds
-    # the accepted points the predictor interpolates, oldest first
-    nodes: list[Node] = []
-    steps = 0
-    failure = ""
-    status = None
-    while status is None:
-        if steps >= options.max_steps:
-            status, message = Status.MAX_STEPS, f"{Status.MAX_STEPS.value} ({steps})"
-            break
-        h = min(ds, options.max_arclength - point.s)
+    def __init__(self, run: _Run, start: Node) -> None:
+        self.run = run
+        self.start = start
+        self.point = start
+        # the accepted points the predictor interpolates, oldest first
+        self.nodes: list[Node] = []
+        self.ds = run.options.ds
+        self.steps = 0
+        self.status: Status | None = None
+        self.message = ""
 
-        # predict
-        if nodes:
-            x_pred, border, order = _extrapolate((*nodes, point), h)
+    def check_terminated(self) -> bool:
+        """Whether the run has ended; the last check, of the folds, once it has."""
+        if self.status is None and self.steps >= self.run.options.max_steps:
+            self.status = Status.MAX_STEPS
+            self.message = f"{Status.MAX_STEPS.value} ({self.steps})"
+        if self.status is None:
+            return False
+        if not self.status.failed:
+            inconsistency = _fold_inconsistency(self.run)
+            if inconsistency:
+                self.status, self.message = Status.INCONSISTENT, inconsistency
+        return True
+
+    def step(self) -> None:
+        """One step: predict, correct, accept (locating its special points) or reject, adapt."""
+        run, options, point = self.run, self.run.options, self.point
+        h = min(self.ds, options.max_arclength - point.s)
+        if self.nodes:
+            x_pred, border, order = extrapolate((*self.nodes, point), h)
         else:
-            x_pred = point.x + h * point.tangent
-            border = point.tangent
-            order = 2
-
-        # correct
-        correction = correct(evaluator, x_pred, border, tol=options.tol, xtol=options.tol,
-                             max_newton=options.max_newton,
-                             max_contraction=options.newton_contraction,
+            x_pred, border, order = point.x + h * point.tangent, point.tangent, 2
+        correction = correct(run.evaluator, x_pred, border, options.newton,
                              max_correction=options.max_correction)
         alpha = 0.0
         if correction.ok:
-            cosine = float(correction.tangent @ point.tangent)
-            alpha = math.acos(max(-1.0, min(1.0, cosine)))
+            alpha = math.acos(max(-1.0, min(1.0, float(correction.tangent @ point.tangent))))
             if alpha > options.max_angle:
                 correction.ok = False
                 correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
-
-        # reject
         if not correction.ok:
-            run.rejected += 1
-            failure = correction.reason
-            logger.debug("step %d rejected at s=%.6g with ds=%.3g: %s", steps + 1, point.s, h,
-                         failure)
-            ds = 0.5 * h
-            if ds < options.ds_min:
-                status, message = _step_failure(run, point, steps, failure, ds)
-            continue
-
-        # accept
-        steps += 1
-        length = _arc_length(correction.x - point.x, alpha)
+            self._reject(h, correction.reason, Status.STEP_TOO_SMALL)
+            return
+        truncated = h >= options.max_arclength - point.s
         try:
-            new = run.node(correction.x, point.s + length, correction.tangent, correction.det,
-                           correction.residual, correction.iterations)
-            truncated = h >= options.max_arclength - point.s
-            if truncated and new.s != options.max_arclength:
-                new = _point_at_arclength(run, point, new, options.max_arclength)
-            closing = _closing_point(run, start, point, new) if options.detect_closed else None
-            if closing is not None:
-                new = closing
+            new, closing = self._accepted_point(correction, alpha, truncated)
             found = _scan_step(run, point, new)
         except EventNotFinite as error:
-            status, message = Status.EVENT_NOT_FINITE, (
+            self.status, self.message = Status.EVENT_NOT_FINITE, (
                 f"{error}; the event's zeros cannot be found beyond s={point.s:.12g}: make the "
                 "event finite along the curve or stop the curve before")
-            break
+            return
         except LocateError as error:
             # a step whose special points cannot be located is too long for its Hermite
             # arc: reject it like any other, and fail only at the smallest step
-            run.rejected += 1
-            steps -= 1
-            ds = 0.5 * h
-            if ds < options.ds_min:
-                status, message = Status.NOT_LOCATED, (
-                    f"{Status.NOT_LOCATED.value}: {error}; even with the step size {h:.3g} "
-                    f"(ds_min={options.ds_min:.3g}); the curve ends before it")
-            else:
-                logger.debug("step %d rejected: %s", steps + 1, error)
-            continue
-        terminal = _add_step(run, point, new, found)
-        if terminal is not None:
-            status, message = Status.TERMINAL_EVENT, (
-                f"terminal event '{terminal.name}' at s={terminal.s:.12g}, "
-                f"x={problem.describe(terminal.x)}")
-        elif closing is not None:
-            run.mark("closed", "closed", len(run.s) - 1, 0.0)
-            status, message = Status.CLOSED, (
-                f"{Status.CLOSED.value} after {steps} steps, length s={new.s:.12g}")
-        elif truncated:
-            status, message = Status.MAX_ARCLENGTH, f"{Status.MAX_ARCLENGTH.value} s={new.s:.12g}"
-
-        # adapt
-        ds = min(options.ds_max, h * _step_multiplier(correction, alpha, order, options))
-        ds = max(ds, options.ds_min)
+            self._reject(h, str(error), Status.NOT_LOCATED)
+            return
+        self.steps += 1
+        self._end(_add_step(run, point, new, found), closing, truncated, new)
+        self.ds = max(options.ds_min,
+                      min(options.ds_max, h * _step_multiplier(correction, alpha, order, options)))
         # a singular start (det 0) carries a given tangent, not a computed null vector,
         # whose error the extrapolation would amplify: it is no Hermite node
-        nodes = [*nodes[-(PREDICTOR_NODES - 2):], point] if point.det != 0.0 else []
-        point = new
-    if not status.failed:
-        inconsistency = _fold_inconsistency(run)
-        if inconsistency:
-            status, message = Status.INCONSISTENT, inconsistency
-    return run.curve(status, message, n1)
+        self.nodes = [*self.nodes[-(PREDICTOR_NODES - 2):], point] if point.det != 0.0 else []
+        self.point = new
+
+    def _accepted_point(self, correction: Correction, alpha: float, truncated: bool):
+        """The new curve point, moved to ``max_arclength`` or onto the start if it closes."""
+        run, point = self.run, self.point
+        new = run.node(correction.x, point.s + arc_length(correction.x - point.x, alpha),
+                       correction.tangent, correction.det, correction.residual,
+                       correction.iterations)
+        if truncated and new.s != run.options.max_arclength:
+            new = _point_at_arclength(run, point, new, run.options.max_arclength)
+        closing = None
+        if run.options.detect_closed:
+            closing = _closing_point(run, self.start, point, new)
+        return (new if closing is None else closing), closing
+
+    def _reject(self, h: float, reason: str, failure: Status) -> None:
+        """Halve the step; at the smallest step the run fails with ``failure``."""
+        self.run.rejected += 1
+        logger.debug("step %d rejected at s=%.6g with ds=%.3g: %s", self.steps + 1,
+                     self.point.s, h, reason)
+        self.ds = 0.5 * h
+        if self.ds < self.run.options.ds_min:
+            if failure is Status.NOT_LOCATED:
+                self.status, self.message = failure, (
+                    f"{failure.value}: {reason}; even with the step size {h:.3g} "
+                    f"(ds_min={self.run.options.ds_min:.3g}); the curve ends before it")
+            else:
+                self.status, self.message = _step_failure(self.run, self.point, self.steps,
+                                                          reason, self.ds)
+
+    def _end(self, terminal: SpecialPoint | None, closing, truncated: bool, new: Node) -> None:
+        """The status if the accepted step ended the run."""
+        run = self.run
+        if terminal is not None:
+            self.status, self.message = Status.TERMINAL_EVENT, (
+                f"terminal event '{terminal.name}' at s={terminal.s:.12g}, "
+                f"x={run.problem.describe(terminal.x)}")
+        elif closing is not None:
+            run.mark(SpecialKind.CLOSED, "closed", len(run.s) - 1, 0.0)
+            self.status, self.message = Status.CLOSED, (
+                f"{Status.CLOSED.value} after {self.steps} steps, length s={new.s:.12g}")
+        elif truncated:
+            self.status = Status.MAX_ARCLENGTH
+            self.message = f"{Status.MAX_ARCLENGTH.value} s={new.s:.12g}"
 
 
 def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
@@ -375,7 +395,7 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
         return None, Status.NON_FINITE, f"the Jacobian is not finite at the start {where}"
     reference = None
     if direction is not None and not isinstance(direction, (int, np.integer)):
-        reference = _as_vector("direction", direction)
+        reference = as_vector("direction", direction)
         if reference.size != n1 or not np.any(reference):
             raise ValueError(f"direction must be None, 1, -1 or a nonzero array of shape "
                              f"({n1},), got {direction!r}")
@@ -396,7 +416,7 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
                 "use switch_branch(problem, x0, ...) or pass an explicit tangent=")
         guess = basis[-1]
     else:
-        guess = _as_vector("tangent", tangent)
+        guess = as_vector("tangent", tangent)
         norm = float(np.linalg.norm(guess))
         if guess.size != n1 or not norm > 0:
             raise ValueError(f"tangent must be a nonzero finite array of shape ({n1},), "
@@ -408,9 +428,7 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
         correction = Correction(False, SINGULAR, x0, None, 0.0, float(np.max(np.abs(H))), 0,
                                 0.0, 0.0)
     else:
-        correction = correct(evaluator, x0, guess, tol=options.tol, xtol=options.tol,
-                             max_newton=options.max_newton,
-                             max_contraction=options.newton_contraction,
+        correction = correct(evaluator, x0, guess, options.newton,
                              residual=H, jacobian=J)
     if correction.ok:
         x, t, det = correction.x, correction.tangent, correction.det
@@ -443,93 +461,10 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
     return point, None, ""
 
 
-def _extrapolate(nodes: Sequence[Node], h: float):
-    """Prediction ``h`` beyond the last node on the Hermite interpolant of the nodes.
-
-    Returns ``(x_pred, border, order)``: the point, the unit tangent of the
-    interpolant there (the border row of the corrector) and the order of the
-    prediction error.
-
-    Notes
-    -----
-    With ``m`` nodes ``(s_j, x_j, t_j)``, the last one ``b``, and the variable
-    ``sigma = (s - s_b) / H`` (``H`` the last span, nodes at ``z_j``), the
-    interpolant of degree ``2m - 1`` matching every ``x_j`` and ``t_j`` is
-
-    .. math::
-
-        p(\\sigma) = \\sum_j \\left[1 - 2 L_j'(z_j) (\\sigma - z_j)\\right]
-                     L_j(\\sigma)^2 \\, x_j
-                   + (\\sigma - z_j) L_j(\\sigma)^2 \\, H t_j,
-
-    with the Lagrange polynomials ``L_j`` of the nodes (the Hermite basis,
-    e.g. Stoer & Bulirsch, *Introduction to Numerical Analysis*, sec. 2.1.5).
-    Its weights at ``sigma = u = h / H``, and those of ``p'(u)``, are a few
-    scalar products and sums, so the prediction is one small matrix product
-    with the node vectors. With two nodes this is the cubic Hermite arc of
-    the last step (order 4), with three the quintic (order 6). Beyond twice
-    the last span (``u > 2``) the node errors would be amplified as
-    ``u^(2m-1)``: only the quadratic Taylor part of the last step's cubic at
-    ``b`` is kept, ``x_b + h t_b + h^2 c / 2`` with
-    ``c = 6 (x_a - x_b) / H^2 + (2 t_a + 4 t_b) / H`` (order 3).
-    """
-    b = nodes[-1]
-    span = b.s - nodes[-2].s
-    u = h / span
-    if u > 2.0:
-        a = nodes[-2]
-        q = 3.0 * u * u
-        weights = ((1.0 - q, h + 2.0 * span * u * u, q, span * u * u),
-                   (-6.0 * u / span, 1.0 + 4.0 * u, 6.0 * u / span, 2.0 * u))
-        vectors = (b.x, b.tangent, a.x, a.tangent)
-        order = 3
-    else:
-        z = [(node.s - b.s) / span for node in nodes]
-        values, slopes, vectors = [], [], []
-        for j, node in enumerate(nodes):
-            # L_j(u), L_j'(u) / L_j(u) and L_j'(z_j) from the other nodes
-            lagrange, log_slope, at_node = 1.0, 0.0, 0.0
-            for i, z_i in enumerate(z):
-                if i != j:
-                    lagrange *= (u - z_i) / (z[j] - z_i)
-                    log_slope += 1.0 / (u - z_i)
-                    at_node += 1.0 / (z[j] - z_i)
-            offset = u - z[j]
-            square = lagrange * lagrange
-            d_square = 2.0 * square * log_slope
-            values += [(1.0 - 2.0 * at_node * offset) * square, span * offset * square]
-            slopes += [-2.0 * at_node * square + (1.0 - 2.0 * at_node * offset) * d_square,
-                       span * (square + offset * d_square)]
-            vectors += [node.x, node.tangent]
-        weights = (values, slopes)
-        order = 2 * len(nodes)
-    x_pred, border = np.array(weights) @ np.array(vectors)
-    return x_pred, border / norm(border), order
-
-
 def _svd(J: np.ndarray):
     """Singular values of ``J`` and the full right singular basis (rows)."""
     _, singular_values, basis = np.linalg.svd(J, full_matrices=True)
     return singular_values, basis
-
-
-def _as_vector(name: str, value) -> np.ndarray:
-    array = np.array(value, dtype=float)
-    if array.ndim != 1 or not np.isfinite(array).all():
-        raise ValueError(f"{name} must be a finite 1-D array, got {value!r}")
-    return array
-
-
-def _arc_length(chord: np.ndarray, alpha: float) -> float:
-    """Arclength of a step from its chord and the angle between its end tangents.
-
-    ``|chord| (alpha / 2) / sin(alpha / 2)``: exact on a circular arc, with an
-    error ``O(h^5)`` on a smooth curve; the pseudo-arclength ``h`` itself is
-    off by ``O(h^3)``.
-    """
-    length = math.sqrt(float(chord @ chord))
-    half = 0.5 * alpha
-    return length * half / math.sin(half) if half > 1e-8 else length
 
 
 def _step_multiplier(correction, alpha: float, order: int, options: Options) -> float:
@@ -566,9 +501,7 @@ def _point_at_arclength(run: _Run, a: Node, b: Node, s: float) -> Node:
     """
     options = run.options
     p, dp = hermite(a.x, a.tangent, b.x, b.tangent, b.s - a.s, s - a.s)
-    correction = correct(run.evaluator, p, dp / np.linalg.norm(dp), tol=options.tol,
-                         xtol=options.tol, max_newton=options.max_newton,
-                         max_contraction=options.newton_contraction)
+    correction = correct(run.evaluator, p, dp / np.linalg.norm(dp), options.newton)
     if not correction.ok:
         logger.debug("could not move the last point to s=%.12g: %s", s, correction.reason)
         return b
@@ -603,14 +536,12 @@ def _closing_point(run: _Run, start: Node, a: Node, b: Node) -> Node | None:
     p, _ = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
     p = p - t0 * float(t0 @ (p - x0))
     options = run.options
-    correction = correct(run.evaluator, p, t0, tol=options.tol, xtol=options.tol,
-                         max_newton=options.max_newton,
-                         max_contraction=options.newton_contraction, need_tangent=False)
+    correction = correct(run.evaluator, p, t0, options.newton, need_tangent=False)
     scale = CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
     if not correction.ok or float(np.max(np.abs(correction.x - x0))) > scale:
         return None
     angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
-    return Node(x0.copy(), a.s + _arc_length(x0 - a.x, angle), start.tangent, start.det,
+    return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
                 start.residual, correction.iterations, start.events)
 
 
@@ -708,7 +639,7 @@ def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint 
             c = located.correction if located.node is None else located.node
             # the root finder's variable is the Hermite parameter; report arclength
             angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
-            s = min(b.s, a.s + _arc_length(c.x - a.x, angle))
+            s = min(b.s, a.s + arc_length(c.x - a.x, angle))
             index = run.append(c.x, max(s, run.s[-1]), c.tangent, c.residual, c.iterations)
         previous_s = located.s
         special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate,
@@ -754,5 +685,5 @@ def _append_end(run: _Run, a_index: int, b: Node) -> int:
     if len(run.s) - 1 != a_index and b.s != run.options.max_arclength:
         x, t = run.x[-1], run.tangents[-1]
         angle = math.acos(max(-1.0, min(1.0, float(t @ b.tangent))))
-        b.s = run.s[-1] + _arc_length(b.x - x, angle)
+        b.s = run.s[-1] + arc_length(b.x - x, angle)
     return run.append(b.x, b.s, b.tangent, b.residual, b.iterations)

@@ -1,13 +1,13 @@
 """The expected topology per k: thresholds computed from the equations, and the tracer's use
 of them (a curve that differs from it is a failure, never an ok)."""
 
+import dataclasses
 import math
 import re
 
 import numpy as np
 import pytest
 
-from continuation import Options
 from groove_model import topology
 from groove_model.parameters import Compliance, Parameters
 from groove_model.topology import expected_topology, thresholds
@@ -58,7 +58,7 @@ def test_thresholds_scale_with_the_compliance_ratio():
 
 def test_a_curve_that_stops_short_is_a_failure_with_a_message():
     # too few steps: the engine stops normally (max_steps), but not where the curve must end
-    options = Options(**{**DEFAULT_OPTIONS.__dict__, "max_steps": 5})
+    options = dataclasses.replace(DEFAULT_OPTIONS, max_steps=5)
     bs = trace_boundaries(10.0, options=options)
     assert not bs.ok
     dr = bs.curves["dr_limit"]

@@ -1,9 +1,11 @@
 """The predictor reproduces polynomials of its degree exactly."""
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
-from continuation.tracker import _extrapolate, _Point
+from continuation.predictor import extrapolate
 
 rng = np.random.default_rng(7)
 
@@ -13,7 +15,7 @@ def _node(coefficients, s):
     powers = np.arange(len(coefficients))
     x = (s ** powers) @ coefficients
     derivative = (powers[1:] * s ** (powers[1:] - 1)) @ coefficients[1:]
-    return _Point(x, s, derivative, 1.0, 0.0, 0, [])
+    return SimpleNamespace(x=x, s=s, tangent=derivative)
 
 
 @pytest.mark.parametrize("stations, degree, h, order", [
@@ -24,7 +26,7 @@ def _node(coefficients, s):
 def test_extrapolation_is_exact_on_polynomials_of_its_degree(stations, degree, h, order):
     coefficients = rng.normal(size=(degree + 1, 4))
     nodes = [_node(coefficients, s) for s in stations]
-    x_pred, border, got_order = _extrapolate(nodes, h)
+    x_pred, border, got_order = extrapolate(nodes, h)
     expected = _node(coefficients, stations[-1] + h)
     assert got_order == order
     assert x_pred == pytest.approx(expected.x, abs=1e-12)
@@ -34,10 +36,10 @@ def test_extrapolation_is_exact_on_polynomials_of_its_degree(stations, degree, h
 def test_quintic_prediction_error_falls_as_h_to_the_sixth():
     # the unit circle by arclength; nodes one span h apart, prediction h ahead
     def node(s):
-        return _Point(np.array([np.cos(s), np.sin(s)]), s, np.array([-np.sin(s), np.cos(s)]),
-                      1.0, 0.0, 0, [])
+        return SimpleNamespace(x=np.array([np.cos(s), np.sin(s)]), s=s,
+                               tangent=np.array([-np.sin(s), np.cos(s)]))
     errors = []
     for h in (0.2, 0.1):
-        x_pred, _, _ = _extrapolate([node(0.0), node(h), node(2 * h)], h)
+        x_pred, _, _ = extrapolate([node(0.0), node(h), node(2 * h)], h)
         errors.append(np.linalg.norm(x_pred - node(3 * h).x))
     assert 2 ** 5.5 < errors[0] / errors[1] < 2 ** 6.5

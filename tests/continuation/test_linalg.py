@@ -7,7 +7,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from continuation.small import all_finite, max_abs, norm
+from continuation.linalg import all_finite, max_abs, norm
 
 floats = st.floats(allow_nan=True, allow_infinity=True, width=64)
 
