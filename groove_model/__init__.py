@@ -4,10 +4,10 @@ The physics lives here; the generic continuation engine is the sibling package
 ``continuation``.
 """
 
-from .boundaries import BOUNDARY_NAMES, BoundarySystem, boundary_system
-from .dimensional import DimensionalState, dimensional_state
-from .equilibrium import Equilibrium, Regime, Rotation, regime_validity, solve_equilibrium
-from .parameters import Compliance, Parameters, check_domain
+from .model.boundaries import BOUNDARY_NAMES, BoundarySystem, boundary_system
+from .model.dimensional import DimensionalState, dimensional_state
+from .model.equilibrium import Equilibrium, Regime, Rotation, regime_validity, solve_equilibrium
+from .model.parameters import Compliance, Parameters, check_domain
 
 __all__ = [
     "BOUNDARY_NAMES",

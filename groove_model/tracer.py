@@ -33,14 +33,14 @@ from scipy.linalg.lapack import dgesv
 from continuation import Curve, Event, Options, Problem, switch_branch, trace
 from continuation.small import all_finite, max_abs, norm
 
-from .boundaries import (
+from .model.boundaries import (
     BOUNDARY_NAMES,
     BoundarySystem,
     corner_point,
     dr_no_roll_branch_point,
     limit_seed,
 )
-from .parameters import Parameters
+from .model.parameters import Parameters
 
 __all__ = [
     "BoundaryCurve",

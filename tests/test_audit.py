@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groove_model import audit
-from groove_model.audit import (
+from groove_model.analysis.audit import checks as audit
+from groove_model.analysis.audit.checks import (
     DEFAULT_KS,
     VERDICTS,
     Claim,
@@ -20,15 +20,15 @@ from groove_model.audit import (
     rs_no_roll_gamma,
     run_audit,
 )
-from groove_model.boundaries import boundary_system
-from groove_model.cli import EXIT_USAGE, UsageError, build_parser
-from groove_model.cli_analysis import add_audit_command, add_map_command
-from groove_model.equilibrium import (
+from groove_model.model.boundaries import boundary_system
+from groove_model.cli.main import EXIT_USAGE, UsageError, build_parser
+from groove_model.cli.analysis import add_audit_command, add_map_command
+from groove_model.model.equilibrium import (
     double_rolling_state,
     rolling_sliding_state,
     solve_equilibrium,
 )
-from groove_model.parameters import Parameters
+from groove_model.model.parameters import Parameters
 
 # shared/ sits beside the repository (here and in CI).
 PAPER = Path(__file__).resolve().parents[2] / "shared" / "paper" / "ball_in_a_groove.tex"
@@ -334,7 +334,7 @@ def test_map_cli_writes_png_and_svg(tmp_path, capsys):
 
 
 def test_computation_failures_exit_1(tmp_path, monkeypatch, capsys):
-    from groove_model import audit as audit_module
+    from groove_model.analysis.audit import checks as audit_module
     from groove_model import tracer
 
     def broken(*args, **kwargs):

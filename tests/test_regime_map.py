@@ -14,10 +14,10 @@ from matplotlib.colors import to_rgba
 from matplotlib.image import AxesImage
 from matplotlib.lines import Line2D
 
-from groove_model.boundaries import boundary_system
-from groove_model.equilibrium import double_rolling_state, solve_equilibrium
-from groove_model.parameters import Parameters
-from groove_model.regime_map import (
+from groove_model.model.boundaries import boundary_system
+from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
+from groove_model.model.parameters import Parameters
+from groove_model.plots.regime_map import (
     CATEGORIES,
     CATEGORY_COLOURS,
     CATEGORY_LABELS,

@@ -33,9 +33,9 @@ import numpy as np
 from scipy import optimize
 from scipy.optimize import elementwise
 
-from .boundaries import boundary_system
-from .equilibrium import double_rolling_state, solve_equilibrium
-from .parameters import Parameters
+from ..model.boundaries import boundary_system
+from ..model.equilibrium import double_rolling_state, solve_equilibrium
+from ..model.parameters import Parameters
 
 __all__ = [
     "CATEGORIES",
@@ -468,10 +468,10 @@ def draw_regime_map(ax, k, n: int = 600, boundaries: bool = True, degrees: bool 
 
     boundary_handles = []
     if boundaries:
-        from .plotting import draw_boundaries
+        from .overlay import draw_boundaries
 
         if boundary_set is None:
-            from .tracer import trace_boundaries
+            from ..tracer import trace_boundaries
 
             boundary_set = trace_boundaries(params)
         if not boundary_set.ok:
@@ -574,7 +574,7 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .export import atomic_write
+    from ..io.export import atomic_write
 
     params = Parameters.coerce(k)
     formats = tuple(formats)

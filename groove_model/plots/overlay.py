@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 
 
-from .tracer import BoundarySet
+from ..tracer import BoundarySet
 
 __all__ = ["LINESTYLES", "draw_boundaries", "save_overlay"]
 
@@ -113,7 +113,7 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from .export import atomic_write
+    from ..io.export import atomic_write
 
     path = Path(path)
     stem = path.with_suffix("") if path.suffix.lower() in (".png", ".svg", ".pdf") else path

@@ -43,9 +43,9 @@ import numpy as np
 from scipy import optimize
 from scipy.optimize import elementwise
 
-from .equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
-from .parameters import Parameters, check_friction
-from .regime_map import CATEGORIES, classify_grid, dr_limit_no_roll_point, dr_no_roll_line
+from ...model.equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
+from ...model.parameters import Parameters, check_friction
+from ...plots.regime_map import CATEGORIES, classify_grid, dr_limit_no_roll_point, dr_no_roll_line
 
 __all__ = [
     "DEFAULT_KS",
@@ -467,7 +467,7 @@ class _Context:
                 self.tracer_status[label] = "not used (use_tracer=False)"
                 return None
             try:
-                from .tracer import trace_boundaries
+                from ...tracer import trace_boundaries
 
                 bs = trace_boundaries(k, keep_unphysical=True)
             except (ArithmeticError, RuntimeError, ValueError, np.linalg.LinAlgError) as exc:

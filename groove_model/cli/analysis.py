@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .cli import EXIT_FAILED, EXIT_OK, UsageError, _friction
+from .main import EXIT_FAILED, EXIT_OK, UsageError, _friction
 
 __all__ = ["add_audit_command", "add_map_command"]
 
@@ -89,7 +89,7 @@ def add_map_command(subparsers) -> argparse.ArgumentParser:
 
 def add_audit_command(subparsers) -> argparse.ArgumentParser:
     """Register ``groove audit`` on an ``argparse`` subparsers object; returns its parser."""
-    from .audit import DEFAULT_KS
+    from ..analysis.audit.checks import DEFAULT_KS
 
     p = subparsers.add_parser(
         "audit", help="check every quantitative claim of the paper, with numbers",
@@ -120,7 +120,7 @@ def _formats(target: Path, svg: bool) -> tuple:
 
 
 def _run_map(args) -> int:
-    from .regime_map import save_regime_map
+    from ..plots.regime_map import save_regime_map
 
     target = Path(args.output)
     formats = _formats(target, args.svg)
@@ -129,7 +129,7 @@ def _run_map(args) -> int:
     boundary_set = None
     try:
         if not args.no_boundaries:
-            from .tracer import trace_boundaries
+            from ..tracer import trace_boundaries
 
             log.info("tracing the boundaries for k = %g", args.k)
             boundary_set = trace_boundaries(args.k)
@@ -169,8 +169,8 @@ def _summary(report) -> str:
 
 
 def _run_audit(args) -> int:
-    from .audit import DEFAULT_KS, run_audit
-    from .export import atomic_write
+    from ..analysis.audit.checks import DEFAULT_KS, run_audit
+    from ..io.export import atomic_write
 
     ks = tuple(args.ks) if args.ks else DEFAULT_KS
     out = Path(args.out) if args.out else None

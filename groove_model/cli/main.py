@@ -12,7 +12,7 @@ import logging
 import math
 import sys
 
-from .parameters import check_domain, check_friction
+from ..model.parameters import check_domain, check_friction
 
 __all__ = ["main", "build_parser"]
 
@@ -96,8 +96,8 @@ def _json_number(value):
 
 
 def _run_solve(args) -> int:
-    from .dimensional import dimensional_state
-    from .equilibrium import solve_equilibrium
+    from ..model.dimensional import dimensional_state
+    from ..model.equilibrium import solve_equilibrium
 
     gamma, delta = (math.radians(args.gamma), math.radians(args.delta)) if args.deg else (
         args.gamma, args.delta)
@@ -189,9 +189,9 @@ def _add_plot(sub) -> None:
 def _run_trace(args) -> int:
     from pathlib import Path
 
-    from .export import write_boundary_set
-    from .plotting import save_overlay
-    from .tracer import trace_boundaries
+    from ..io.export import write_boundary_set
+    from ..plots.overlay import save_overlay
+    from ..tracer import trace_boundaries
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():
@@ -224,8 +224,8 @@ def _run_trace(args) -> int:
 def _run_plot(args) -> int:
     from pathlib import Path
 
-    from .export import read_boundaries_csv
-    from .plotting import save_overlay
+    from ..io.export import read_boundaries_csv
+    from ..plots.overlay import save_overlay
 
     frames = []
     for name in args.files:
@@ -303,7 +303,7 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    from .cli_analysis import add_audit_command, add_map_command
+    from .analysis import add_audit_command, add_map_command
 
     _add_solve(sub)
     _add_trace(sub)
