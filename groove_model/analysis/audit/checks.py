@@ -45,7 +45,8 @@ from scipy.optimize import elementwise
 
 from ...model.equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
 from ...model.parameters import Parameters, check_friction
-from ...plots.regime_map import CATEGORIES, classify_grid, dr_limit_no_roll_point, dr_no_roll_line
+from ...analysis.regimes import CATEGORIES, classify_grid
+from ...model.lines import dr_limit_no_roll_point, dr_no_roll_line
 
 __all__ = [
     "DEFAULT_KS",
