@@ -9,25 +9,21 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groove_model.analysis.audit import checks as audit
-from groove_model.analysis.audit.checks import (
-    DEFAULT_KS,
-    VERDICTS,
-    Claim,
-    dr_limit_delta,
-    normalise_tex,
-    rs_limit_delta,
-    rs_no_roll_gamma,
-    run_audit,
-)
+from groove_model.analysis.audit import run as audit_run
+from groove_model.analysis.audit.context import sign_changes
+from groove_model.analysis.audit.report import DEFAULT_KS, VERDICTS, Claim, normalise_tex
+from groove_model.analysis.audit.run import run_audit
+from groove_model.cli.audit import add_parser as add_audit_command
+from groove_model.cli.common import EXIT_USAGE, UsageError
+from groove_model.cli.main import build_parser
+from groove_model.cli.map import add_parser as add_map_command
 from groove_model.model.boundaries import boundary_system
-from groove_model.cli.main import EXIT_USAGE, UsageError, build_parser
-from groove_model.cli.analysis import add_audit_command, add_map_command
 from groove_model.model.equilibrium import (
     double_rolling_state,
     rolling_sliding_state,
     solve_equilibrium,
 )
+from groove_model.model.lines import dr_limit_delta, rs_limit_delta, rs_no_roll_gamma
 from groove_model.model.parameters import Parameters
 
 # shared/ sits beside the repository (here and in CI).
@@ -200,7 +196,7 @@ def test_rs_no_roll_rows_solve_the_boundary_equations(k):
 
 def test_sign_changes_count_through_zeros():
     values = np.array([[-1.0, 0.0, 1.0, 2.0], [-1.0, 0.0, -1.0, -2.0], [0.0, 1.0, -1.0, 1.0]])
-    assert audit._sign_changes(values, axis=1).tolist() == [1, 0, 2]
+    assert sign_changes(values, axis=1).tolist() == [1, 0, 2]
 
 
 # --------------------------------------------------------------------------------------------
@@ -334,13 +330,12 @@ def test_map_cli_writes_png_and_svg(tmp_path, capsys):
 
 
 def test_computation_failures_exit_1(tmp_path, monkeypatch, capsys):
-    from groove_model.analysis.audit import checks as audit_module
     from groove_model import tracer
 
     def broken(*args, **kwargs):
         raise ArithmeticError("root finding failed for 3 brackets")
 
-    monkeypatch.setattr(audit_module, "run_audit", broken)
+    monkeypatch.setattr(audit_run, "run_audit", broken)
     assert run_cli(["audit", "-k", "1"]) == 1
     assert "computation failed" in capsys.readouterr().err
     monkeypatch.setattr(tracer, "trace_boundaries", broken)

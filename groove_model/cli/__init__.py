@@ -1,4 +1,4 @@
-"""The ``groove`` command line."""
+"""The ``groove`` command line: one module per command, the parser and entry point in ``main``."""
 
 from .main import build_parser, main
 
