@@ -144,22 +144,10 @@ def dr_limit_delta(k: float, gamma) -> np.ndarray:
 def rs_limit_delta(k: float, gamma) -> np.ndarray:
     """``delta`` where the rolling-sliding slip ``d_L`` vanishes on each column ``gamma``.
 
-    Parameters
-    ----------
-    k : float
-        Friction coefficient, > 0.
-    gamma : array_like
-        Columns, radians, ``0 < gamma < arctan k``.
-
-    Returns
-    -------
-    ndarray
-        ``delta`` of ``rs_limit`` on each column.
-
-    Notes
-    -----
-    ``d_L/Z = 2 (sin gamma - k cos gamma) < 0`` on ``delta = 0`` and ``2 sin^2 gamma > 0`` on
-    ``delta = gamma`` (paper, "Rolling-sliding solutions"); the root between is bracketed.
+    The same curve as :func:`dr_limit_delta` (same arguments and result), found from the
+    other side: ``d_L/Z = 2 (sin gamma - k cos gamma) < 0`` on ``delta = 0`` and
+    ``2 sin^2 gamma > 0`` on ``delta = gamma`` (paper, "Rolling-sliding solutions"), and the
+    root between is bracketed.
     """
     gamma = np.asarray(gamma, dtype=float)
     params = Parameters(k)

@@ -30,16 +30,19 @@ unit approach ``Z``. The compliance is the paper's, ``u_t/u_n = T/N``.
 
 Modules
 -------
-``report``
-    What the audit produces: :class:`~.report.Claim`, :class:`~.report.AuditReport` (JSON and
-    Markdown), :data:`~.report.DEFAULT_KS`.
+``claims.ini``
+    The fixed text of every claim, as data, in the paper's order: section, quote, method and,
+    where it does not depend on the numbers, the summary.
 ``registry``
-    The ``@section.claim(id=..., quote=..., method=...)`` decorator: the fixed text of each
-    claim as data; a check returns only its :class:`~.registry.Finding`.
+    Reads ``claims.ini``; ``@claim("id")`` registers the function that checks a claim, which
+    returns only what it computed (a :class:`~.registry.Finding`).
 ``context``
     The grids, lines and traced boundaries the checks share, computed once.
 ``rolling``, ``caption``, ``rolling_sliding``
     The checks, one file per paragraph of the paper.
+``report``
+    What the audit produces: :class:`~.report.Claim`, :class:`~.report.AuditReport` (JSON and
+    Markdown), :data:`~.report.DEFAULT_KS`.
 ``run``
     :func:`~.run.run_audit`.
 

@@ -6,20 +6,13 @@ import numpy as np
 
 from ..regimes import CATEGORIES
 from .context import MAP_N, Context, k_label
-from .registry import Finding, Section, verdict
+from .registry import Finding, claim, verdict
 
-__all__ = ["CAPTION"]
+# The checks are registered with @claim and run by run.run_audit, not imported by name.
+__all__: list = []
 
-CAPTION = Section("Caption of Fig. 2")
 
-
-@CAPTION.claim(
-    id="caption_dr_below_rs_above",
-    quote="Solid lines mark the boundary between the elastic double-rolling regime below "
-          "and the plastic rolling-sliding regime above.",
-    method=f"Every column gamma = const of the {MAP_N}-step map grid (delta > 0): the "
-           "double-rolling nodes must form one run starting at the bottom.",
-)
+@claim("caption_dr_below_rs_above")
 def check_caption_dr_below(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -35,20 +28,10 @@ def check_caption_dr_below(ctx: Context) -> Finding:
         per_k[k_label(k)] = {"columns checked": int(rg.gamma.size - 1),
                              "columns with RS below DR": bad_cols}
         ok &= bad_cols == 0
-    return Finding(
-        verdict=verdict(ok),
-        summary="In every column double rolling lies below the limit and rolling sliding above.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@CAPTION.claim(
-    id="caption_rotation_sides",
-    quote="The dashed and dot-dashed lines mark the boundaries between clockwise "
-          "(low-$\\gamma$) and counter-clockwise (high-$\\gamma$) rolling.",
-    method=f"Every row delta = const > 0 of the {MAP_N}-step map grid, across both regimes: "
-           "the rotation sense may change at most once, and then from clockwise (low gamma) "
-           "to counter-clockwise (high gamma).",
-)
+@claim("caption_rotation_sides")
 def check_caption_rotation(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -69,9 +52,4 @@ def check_caption_rotation(ctx: Context) -> Finding:
                              "rows all one sense": int(np.sum(np.array(changes) == 0)),
                              "rows violating": bad}
         ok &= bad == 0
-    return Finding(
-        verdict=verdict(ok),
-        summary="On every row the rotation changes at most once, always from clockwise at low "
-                "gamma to counter-clockwise at high gamma (rows above delta = pi/4 are all "
-                "counter-clockwise).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)

@@ -1,50 +1,46 @@
-"""The fixed text of each claim as data, registered with its check by a decorator.
+"""The claims' fixed text, read as data, and the ``@claim`` decorator that registers each check.
 
-A check is a function of the shared computations (:class:`~.context.Context`) that returns
-only what it computed, a :class:`Finding`; what the paper says and how it is checked are the
-arguments of the decorator that registers it::
+What the paper says, where, how it is checked and (when it does not depend on the numbers) the
+finding in words are data in ``claims.ini`` beside this module, in the paper's order. A check
+is a function of the shared computations (:class:`~.context.Context`) that returns only what
+it computed, a :class:`Finding`; it is registered under its claim's id::
 
-    ROLLING = Section("Rolling solutions")
-
-    @ROLLING.claim(id="dr_unique", quote="In principle, ...", method="upsilon enters ...")
+    @claim("dr_unique")
     def check_dr_unique(ctx: Context) -> Finding:
         ...
-        return Finding(verdict(ok), summary, numbers)
+        return Finding(verdict(ok), numbers=numbers, summary=f"Exactly one root ...")
 
-The report's :class:`~.report.Claim` joins the two (:meth:`ClaimCheck.assess`).
+:meth:`ClaimText.state` joins the two into the report's :class:`~.report.Claim`.
 """
 
 from __future__ import annotations
 
+import configparser
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from importlib import resources
 
+from .context import GRID_N, LINE_N, MAP_N
 from .report import Claim, Counterexample, Verdict
 
-__all__ = ["ClaimCheck", "Finding", "Section", "verdict"]
+__all__ = ["CHECKS", "CLAIM_TEXTS", "ClaimText", "Finding", "claim", "verdict"]
+
+#: Resolutions the methods in ``claims.ini`` name: ``{grid_points}`` etc.
+_RESOLUTIONS = dict(grid_points=GRID_N - 1, map_steps=MAP_N, line_points=LINE_N - 1)
 
 
 @dataclass(frozen=True)
 class Finding:
-    """What one check computed.
-
-    Attributes
-    ----------
-    verdict : Verdict
-    summary : str
-        The finding in one or two sentences, with the key numbers.
-    numbers : dict
-        The numbers behind the verdict (``"k = ..."`` keys hold per-k results).
-    counterexample : Counterexample or None
-        For ``fails`` (and for a qualification, a point where the unqualified statement is false).
-    method_values : dict
-        Sizes the check computed that its method names: they fill the method's ``{name}``
-        fields (e.g. how many grid points were kept).
+    """What one check computed: its ``verdict`` and the ``numbers`` behind it (``"k = ..."``
+    keys hold per-k results); the ``summary`` in words when it quotes numbers (None: the
+    claim's fixed summary in ``claims.ini``); a ``counterexample`` for ``fails`` (and for a
+    qualification, a point where the unqualified statement is false); and ``method_values``,
+    the sizes the method names as ``{name}`` fields (e.g. how many grid points were kept).
     """
 
     verdict: Verdict
-    summary: str
     numbers: dict = field(default_factory=dict)
+    summary: str | None = None
     counterexample: Counterexample | None = None
     method_values: dict = field(default_factory=dict)
 
@@ -57,65 +53,81 @@ def verdict(holds: bool, qualified: bool = False) -> Verdict:
 
 
 @dataclass(frozen=True)
-class ClaimCheck:
-    """One statement of the paper (fixed text) and the function that checks it.
+class ClaimText:
+    """The fixed text of one claim.
 
-    Attributes
-    ----------
-    id : str
-        Short stable name.
-    section : str
-        The paragraph (or caption) it comes from.
-    quote : str
-        Verbatim from the LaTeX source (runs of white space collapsed); ``" ... "`` joins
-        non-adjacent pieces.
-    method : str
-        How it is checked; ``{name}`` fields are filled from :attr:`Finding.method_values`.
-    check : callable
-        ``check(ctx) -> Finding``.
+    ``id``, ``section``, ``quote`` and ``method`` are those of :class:`~.report.Claim`
+    (``method`` with ``{name}`` fields still to fill). ``summaries`` maps a verdict's value to
+    the summary for that verdict, and ``"any"`` to the summary for every verdict: they are used
+    when the check returns no summary of its own.
     """
 
     id: str
     section: str
     quote: str
     method: str
-    check: Callable = field(repr=False)
+    summaries: dict = field(default_factory=dict)
 
-    def assess(self, ctx) -> Claim:
-        """Run the check on the shared computations ``ctx`` and state the claim with its verdict."""
-        finding = self.check(ctx)
-        return Claim(id=self.id, section=self.section, quote=self.quote,
-                     method=self.method.format_map(finding.method_values),
-                     verdict=finding.verdict, summary=finding.summary, numbers=finding.numbers,
-                     counterexample=finding.counterexample)
-
-
-class Section:
-    """The checks of one paragraph of the paper, in the order they are registered.
-
-    Parameters
-    ----------
-    title : str
-        The paragraph's title (or "Caption of Fig. 2"), as the report names it.
-    """
-
-    def __init__(self, title: str) -> None:
-        self.title = title
-        self.checks: list[ClaimCheck] = []
-
-    def claim(self, id: str, quote: str, method: str) -> Callable:
-        """Register the decorated check with the fixed text of its claim.
+    def state(self, finding: Finding) -> Claim:
+        """The claim with what its check found.
 
         Raises
         ------
         ValueError
-            If ``id`` is already registered in this section.
+            If neither the check nor ``claims.ini`` gives a summary.
         """
-        if any(c.id == id for c in self.checks):
-            raise ValueError(f"claim id = {id!r} is registered twice in {self.title!r}")
+        summary = finding.summary or self.summaries.get(Verdict(finding.verdict).value,
+                                                        self.summaries.get("any"))
+        if summary is None:
+            raise ValueError(f"claim {self.id!r} has no summary for the verdict "
+                             f"{Verdict(finding.verdict).value!r}: give one in claims.ini or in "
+                             "its Finding")
+        method = self.method.format_map({**_RESOLUTIONS, **finding.method_values})
+        return Claim(id=self.id, section=self.section, quote=self.quote, method=method,
+                     verdict=finding.verdict, summary=summary, numbers=finding.numbers,
+                     counterexample=finding.counterexample)
 
-        def register(check: Callable) -> Callable:
-            self.checks.append(ClaimCheck(id, self.title, quote, method, check))
-            return check
 
-        return register
+def _read_texts() -> tuple:
+    """``claims.ini``: one section per claim; a wrapped line continues its value after a space.
+
+    Keys ``section``, ``quote``, ``method``, and ``summary`` (any verdict) or
+    ``summary if VERDICT`` (one verdict).
+    """
+    parser = configparser.ConfigParser(interpolation=None, empty_lines_in_values=False)
+    parser.read_string(resources.files(__package__).joinpath("claims.ini")
+                       .read_text(encoding="utf-8"))
+    texts = []
+    for cid in parser.sections():
+        values = {key: " ".join(value.split("\n")) for key, value in parser[cid].items()}
+        summaries = {key.removeprefix("summary if ") if key != "summary" else "any": value
+                     for key, value in values.items() if key.startswith("summary")}
+        texts.append(ClaimText(cid, values["section"], values["quote"], values["method"],
+                               summaries))
+    return tuple(texts)
+
+
+#: Every claim's fixed text, in the paper's order.
+CLAIM_TEXTS = _read_texts()
+#: The check of each claim id, filled by :func:`claim`.
+CHECKS: dict = {}
+
+
+def claim(id: str) -> Callable:
+    """Register the decorated function as the check of claim ``id``.
+
+    Raises
+    ------
+    ValueError
+        If ``id`` is not a claim of ``claims.ini`` or already has a check.
+    """
+    if id not in {text.id for text in CLAIM_TEXTS}:
+        raise ValueError(f"claim id = {id!r} is not in claims.ini")
+    if id in CHECKS:
+        raise ValueError(f"claim id = {id!r} already has a check: {CHECKS[id].__name__}")
+
+    def register(check: Callable) -> Callable:
+        CHECKS[id] = check
+        return check
+
+    return register

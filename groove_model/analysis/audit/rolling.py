@@ -15,37 +15,16 @@ from ...model.equilibrium import double_rolling_state, solve_equilibrium
 from ...model.lines import bracketed_root, dr_limit_delta, dr_margins
 from ...model.parameters import Parameters
 from ..regimes import CATEGORIES
-from .context import (
-    GRID_N,
-    HALF_PI,
-    IDENTITY_TOL,
-    LINE_N,
-    MAP_N,
-    SQRT2,
-    Context,
-    distance,
-    first_special_point,
-    k_label,
-    rotation_changes,
-    sign_changes,
-)
-from .registry import Finding, Section, verdict
+from .context import (GRID_N, HALF_PI, IDENTITY_TOL, LINE_N, MAP_N, SQRT2, Context, distance,
+                      first_special_point, k_label, rotation_changes, sign_changes)
+from .registry import Finding, claim, verdict
 from .report import Counterexample
 
-__all__ = ["ROLLING"]
+# The checks are registered with @claim and run by run.run_audit, not imported by name.
+__all__: list = []
 
-ROLLING = Section("Rolling solutions")
 
-
-@ROLLING.claim(
-    id="dr_contacts_opposite",
-    quote="One of the contact points retrogrades up its contact plane, while the other "
-          "rolls down its plane.",
-    method="In double rolling d_L = d_R = 0, so the paper's contact motions down the walls are "
-           "u_c;L = -Z upsilon and u_c;R = +Z upsilon: opposite whenever upsilon != 0. "
-           f"Counted on a {GRID_N - 1}^2 interior grid (delta = r gamma, 0 < r < 1) of the "
-           "double-rolling region for each k, and located the set where upsilon = 0.",
-)
+@claim("dr_contacts_opposite")
 def check_dr_contacts(ctx: Context) -> Finding:
     dr = ctx.dr_grid()
     per_k, exceptions = {}, []
@@ -83,16 +62,7 @@ def check_dr_contacts(ctx: Context) -> Finding:
         counterexample=ce)
 
 
-@ROLLING.claim(
-    id="dr_unique",
-    quote="In principle, we have a uniquely soluble system, since we have the three "
-          "variables $Z$, $\\beta_L$ and $\\upsilon$ describing the kinematics, with three "
-          "conditions of static equilibrium.",
-    method="upsilon enters the torque balance linearly; eliminating it leaves the horizontal "
-           "balance as one equation in beta_L on (0, pi - 2 gamma) (Z only sets the scale). "
-           "Counted its sign changes on 801 values of beta_L at {points} interior points "
-           "(delta = r gamma, 0 < r < 1).",
-)
+@claim("dr_unique")
 def check_dr_unique(ctx: Context) -> Finding:
     n = 40
     g = np.linspace(0.0, HALF_PI, n + 1)[1:-1]
@@ -120,20 +90,7 @@ def check_dr_unique(ctx: Context) -> Finding:
         method_values=dict(points=G.size))
 
 
-@ROLLING.claim(
-    id="dr_equations",
-    quote="Substituting Eqs. (\\ref{eq:norm}) and (\\ref{eq:rollt}) into Eqs. "
-          "(\\ref{eq:equil1}-\\ref{eq:equil3}), we obtain ... \\left (\\frac{\\sin \\beta_R}"
-          "{\\sin \\beta_L} \\right )^{\\frac{3}{2}} \\!\\!\\!\\!= \\frac{\\sin \\theta_L}"
-          "{\\sin \\theta_R} + \\frac{\\left( \\cos \\beta_L+\\upsilon\\right)\\left(\\cos "
-          "\\theta_R -\\cos \\theta_L\\right)}{\\sin \\beta_L \\sin \\theta_R}, ... \\left( "
-          "\\frac{\\sin \\beta_R}{\\sin \\beta_L} \\right )^{\\frac{1}{2}} \\!\\!\\!\\!= "
-          "\\frac{\\cos \\beta_L + \\upsilon}{\\cos \\beta_R - \\upsilon}.",
-    method="The point solver solves the unreduced balances (horizontal Eq. 2, torque Eq. 3 "
-           "with Hertz and proportional loading). Evaluated the paper's Eqs. (tran1) and "
-           "(tran2) at its double-rolling states on {points} interior grid points "
-           "(theta_R, beta_L, beta_R > 1e-3); relative residuals.",
-)
+@claim("dr_equations")
 def check_dr_equations(ctx: Context) -> Finding:
     G, D = ctx.grid()
     dr = ctx.dr_grid()
@@ -158,16 +115,7 @@ def check_dr_equations(ctx: Context) -> Finding:
         method_values=dict(points=keep.sum()))
 
 
-@ROLLING.claim(
-    id="delta0_symmetric_state",
-    quote="For $\\theta_L = \\theta_R$ (or $\\delta = 0$), $\\beta_L = \\beta_R = "
-          "\\frac{\\pi}{2}-\\gamma$ and $\\upsilon = 0$, i.e., there is no rolling and both "
-          "contacts are stuck.",
-    method="On delta = 0 the horizontal balance reduces to sin(gamma) (sin^1.5 beta_L - "
-           "sin^1.5 beta_R) = 0: counted its roots in beta_L on 2001 values for 399 gammas "
-           "and located the root (Chandrupatla); with beta_L = beta_R the torque balance "
-           "gives upsilon = 0. Also the solver's limit delta -> 0+ (delta = 1e-9 and 1e-12).",
-)
+@claim("delta0_symmetric_state")
 def check_delta0_state(ctx: Context) -> Finding:
     g = np.linspace(0.0, HALF_PI, 401)[1:-1]
     # Independently of the solver's special case on delta = 0: bracket the reduced equation
@@ -210,13 +158,7 @@ def check_delta0_state(ctx: Context) -> Finding:
                  "upsilon from torque at beta_L = beta_R": float(np.max(np.abs(ups_axis)))})
 
 
-@ROLLING.claim(
-    id="delta0_ratio_tan_gamma",
-    quote="\\frac{u_{t;L}}{u_{n;L}} = \\frac{u_{t;R}}{u_{n;R}} = \\cot \\beta_L = \\tan "
-          "\\gamma = \\frac{T_L}{N_L} = \\frac{T_R}{N_R}<k.",
-    method="T/N of both walls of the double-rolling state on delta = 0 (399 gammas) against "
-           "tan gamma; the inequality compared with k for each k.",
-)
+@claim("delta0_ratio_tan_gamma")
 def check_delta0_ratio(ctx: Context) -> Finding:
     g = np.linspace(0.0, HALF_PI, 401)[1:-1]
     dr = double_rolling_state(g, np.zeros_like(g), Parameters(1.0))
@@ -248,14 +190,7 @@ def check_delta0_ratio(ctx: Context) -> Finding:
         counterexample=ce)
 
 
-@ROLLING.claim(
-    id="delta0_valid_below_arctan_k",
-    quote="Hence, the solution for $\\delta=0$ can only exist for $\\gamma < \\arctan(k)$, "
-          "because for $\\gamma > \\arctan(k)$, the values of $T/N$ corresponding to this "
-          "solution exceed $k$.",
-    method="Point solver on delta = 0 at 3999 gammas (step 3.9e-4): where is the symmetric "
-           "double-rolling state valid (T/N <= k)?",
-)
+@claim("delta0_valid_below_arctan_k")
 def check_delta0_validity(ctx: Context) -> Finding:
     g = np.linspace(0.0, HALF_PI, 4001)[1:-1]
     per_k, ok = {}, True
@@ -271,24 +206,10 @@ def check_delta0_validity(ctx: Context) -> Finding:
         ok &= brackets and bool(np.all(dr[decided] == (g <= math.atan(k))[decided]))
         per_k[k_label(k)] = {"last double-rolling gamma": last, "arctan k": math.atan(k),
                              "first gamma with T/N > k": first_out}
-    return Finding(
-        verdict=verdict(ok),
-        summary="Valid exactly for gamma <= arctan k for every k (the last valid and first "
-                "invalid grid gammas bracket arctan k).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING.claim(
-    id="dr_limit_from_arctan_k",
-    quote="Thus, emanating from the point $(\\gamma,\\delta) = (\\arctan(k),0)$ is a boundary "
-          "beyond which double rolling is impossible, because it would require illegal "
-          "values of $T/N >k$.",
-    method="For each k: sign changes of the margin k sin beta_L - (cos beta_L + upsilon) on "
-           "800 deltas in each of 39 columns gamma < arctan k; the limit delta_b(gamma) by "
-           "bracketed root finding as gamma -> arctan k; double-rolling validity on the "
-           f"{GRID_N - 1}^2 interior grid beyond arctan k; the tracer's start point of "
-           "dr_limit.",
-)
+@claim("dr_limit_from_arctan_k")
 def check_dr_limit_start(ctx: Context) -> Finding:
     per_k, ok = {}, True
     G, _ = ctx.grid()
@@ -317,21 +238,10 @@ def check_dr_limit_start(ctx: Context) -> Finding:
                "tracer: |start - (arctan k, 0)|": distance(start, (gk, 0.0))}
         ok &= (bool(np.all(transitions == 1)) and n_beyond == 0 and near_d[-1] < 1e-4)
         per_k[k_label(k)] = row
-    return Finding(
-        verdict=verdict(ok),
-        summary="Every column below arctan k has exactly one double-rolling limit, its delta "
-                "tends to 0 linearly as gamma -> arctan k, and no point with gamma > arctan k, "
-                "delta > 0 is double rolling.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING.claim(
-    id="dr_limit_steeper_wall_first",
-    quote="This bound is exceeded first on the steeper of the two walls.",
-    method=f"T/N_R along the limit (T/N_L = k) on {LINE_N - 1} columns per k; on the "
-           f"{GRID_N - 1}^2 interior grid, points where the right (less steep) wall exceeds "
-           "k while the left does not, and points where T/N_L < T/N_R.",
-)
+@claim("dr_limit_steeper_wall_first")
 def check_dr_limit_steeper(ctx: Context) -> Finding:
     dr = ctx.dr_grid()
     per_k, ok = {}, True
@@ -352,17 +262,7 @@ def check_dr_limit_steeper(ctx: Context) -> Finding:
         numbers={"grid points with T/N_L < T/N_R": steeper_larger, **per_k})
 
 
-@ROLLING.claim(
-    id="dr_limit_to_origin_along_diagonal",
-    quote="This boundary, shown as a solid line in Fig.~\\ref{graph}, rejoins the "
-          "$\\gamma$-axis at $\\gamma =0$, asymptotically merging with the line "
-          "$\\delta = \\gamma$.",
-    method="The limit delta_b(gamma) by bracketed root finding at gamma = 1e-1 ... 1e-4 "
-           "(those below arctan(k)/2), using the torque-eliminated margin that keeps full "
-           "accuracy near the origin; the relative gap (gamma - delta_b)/gamma, the power "
-           "law of gamma - delta_b, and beta_L against the asymptote 2 gamma^2 / k. The "
-           "tracer stops at gamma = 1e-3 on its way to the singular corner.",
-)
+@claim("dr_limit_to_origin_along_diagonal")
 def check_dr_limit_end(ctx: Context) -> Finding:
     per_k, ok = {}, True
     gammas = np.array([1e-1, 1e-2, 1e-3, 1e-4])
@@ -381,25 +281,10 @@ def check_dr_limit_end(ctx: Context) -> Finding:
                "tracer end: gamma": end[0] if end else math.nan}
         ok &= bool(np.all(np.diff(gap) < 0)) and gap[-1] < 1e-3 and slope > 1.5
         per_k[k_label(k)] = row
-    return Finding(
-        verdict=verdict(ok),
-        summary="The limit reaches the origin tangent to delta = gamma: (gamma - delta_b)/gamma "
-                "falls to ~1e-6 at gamma = 1e-4, gamma - delta_b ~ gamma^2.5, and beta_L ~ "
-                "2 gamma^2 / k.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING.claim(
-    id="dr_no_roll_interval",
-    quote="There is an additional solution for which $\\upsilon =0$ (no rolling), with "
-          "$\\beta_L \\ne \\beta_R$, that exists for $\\frac{\\pi}{4} \\le \\gamma \\le "
-          "\\arctan(\\sqrt{2})$.",
-    method="The double-rolling state does not depend on k. Sign changes of upsilon along "
-           "{columns} columns 0 < gamma < pi/2 ({ratios} values of delta/gamma each, dense "
-           "near both ends); the line gamma(delta) by bracketed root finding on "
-           "{rows} rows 1e-6 <= delta < pi/4; the tracer's dr_no_roll (with its "
-           "unphysical part).",
-)
+@claim("dr_no_roll_interval")
 def check_dr_no_roll_interval(ctx: Context) -> Finding:
     gs = np.linspace(0.0, HALF_PI, 801)[1:-1]
     # Ratios delta/gamma, dense towards both ends where the line meets delta = 0 and delta = gamma.
@@ -445,13 +330,7 @@ def check_dr_no_roll_interval(ctx: Context) -> Finding:
         method_values=dict(columns=gs.size, ratios=r.size, rows=d.size))
 
 
-@ROLLING.claim(
-    id="dr_no_roll_ratio_sqrt2",
-    quote="This additional solution always has at least one of the ratios $T/N \\ge "
-          "\\sqrt{2}$",
-    method="max(T/N_L, T/N_R) along the upsilon = 0 line of double rolling (bracketed roots "
-           "on {rows} rows 1e-6 <= delta < pi/4). With upsilon = 0, T/N = cot beta.",
-)
+@claim("dr_no_roll_ratio_sqrt2")
 def check_dr_no_roll_ratio(ctx: Context) -> Finding:
     g, d, st = ctx.dr_no_roll()
     worst = np.maximum(st["T_over_N_L"], st["T_over_N_R"])
@@ -470,13 +349,7 @@ def check_dr_no_roll_ratio(ctx: Context) -> Finding:
         method_values=dict(rows=g.size))
 
 
-@ROLLING.claim(
-    id="dr_no_roll_needs_k_above_sqrt2",
-    quote="so it can only appear for $k > \\sqrt{2}$",
-    method="Physical part (T/N <= k on both walls) of the upsilon = 0 double-rolling line "
-           f"for each k; counter-clockwise double rolling on the {MAP_N}-step map grid; the "
-           "tracer's physical dr_no_roll.",
-)
+@claim("dr_no_roll_needs_k_above_sqrt2")
 def check_dr_no_roll_k(ctx: Context) -> Finding:
     _, _, st = ctx.dr_no_roll()
     per_k, ok = {}, True
@@ -495,22 +368,10 @@ def check_dr_no_roll_k(ctx: Context) -> Finding:
                              "DR clockwise grid nodes": int(np.count_nonzero(codes == dr_cw)),
                              "tracer: physical dr_no_roll": traced if bs is not None else "n/a"}
         ok &= (physical.sum() > 0) == (k > SQRT2) and (n_ccw > 0) == (k > SQRT2)
-    return Finding(
-        verdict=verdict(ok),
-        summary="The line has a physical part, and double rolling has a counter-clockwise "
-                "region, exactly for the k above sqrt 2.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING.claim(
-    id="dr_no_roll_sides",
-    quote="and constitutes a boundary between a regime in which the ball rolls clockwise "
-          "(i.e., down the steeper surface) for smaller $\\gamma$, and a regime in which the "
-          "ball rolls counter-clockwise (i.e., up the steeper surface) for larger $\\gamma$.",
-    method=f"On each row delta > 0 of the {MAP_N}-step map grid (k > sqrt 2): the order of "
-           "clockwise and counter-clockwise double-rolling nodes, and where the rotation "
-           "changes against the line found by root finding.",
-)
+@claim("dr_no_roll_sides")
 def check_dr_no_roll_sides(ctx: Context) -> Finding:
     per_k, ok, checked = {}, True, 0
     g_line, d_line, _ = ctx.dr_no_roll()
@@ -539,25 +400,10 @@ def check_dr_no_roll_sides(ctx: Context) -> Finding:
                              "max |change - line| / step": worst / rg.step}
         checked += 1
         ok &= bad == 0 and worst <= rg.step
-    return Finding(
-        verdict=verdict(ok and checked > 0),
-        summary="On every row the double-rolling nodes are clockwise below the line and "
-                "counter-clockwise above it in gamma, and the change sits within one grid step "
-                "of the line.",
-        numbers=per_k)
+    return Finding(verdict(ok and checked > 0), numbers=per_k)
 
 
-@ROLLING.claim(
-    id="amontons_one_sided",
-    quote="However, we must also impose Eqs. (\\ref{eq:Amont}) constraining the values of "
-          "$T/N$.",
-    method="Eq. (Amont) is written one-sided, T <= k N; that is Amontons' law only if the "
-           "common tangential force T is never negative (the wall never pushes the ball "
-           "down). Minimum of T over the double-rolling states of the interior grid "
-           "(T = c q_L q_R (cos beta_L + cos beta_R)/(q_L + q_R), cos beta_L + cos beta_R = "
-           "2 sin gamma cos((beta_L - beta_R)/2) >= 0) and of mu over the rolling-sliding "
-           "states.",
-)
+@claim("amontons_one_sided")
 def check_amontons_sign(ctx: Context) -> Finding:
     dr = ctx.dr_grid()
     min_t = float(np.min(dr["t"]))

@@ -16,41 +16,16 @@ from scipy import optimize
 from ...model.equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
 from ...model.lines import rs_limit_delta, rs_no_roll_gamma
 from ...model.parameters import Parameters
-from .context import (
-    CORNER,
-    GRID_N,
-    HALF_PI,
-    IDENTITY_TOL,
-    LINE_N,
-    MAP_N,
-    POINT_TOL,
-    SQRT2,
-    VIOLATION,
-    Context,
-    distance,
-    k_label,
-    rotation_changes,
-    sign_changes,
-)
-from .registry import Finding, Section, verdict
+from .context import (CORNER, GRID_N, HALF_PI, IDENTITY_TOL, LINE_N, MAP_N, POINT_TOL, SQRT2,
+                      VIOLATION, Context, distance, k_label, rotation_changes, sign_changes)
+from .registry import Finding, claim, verdict
 from .report import Counterexample
 
-__all__ = ["ROLLING_SLIDING"]
+# The checks are registered with @claim and run by run.run_audit, not imported by name.
+__all__: list = []
 
-ROLLING_SLIDING = Section("Rolling-sliding solutions")
 
-
-@ROLLING_SLIDING.claim(
-    id="rs_only_solution_beyond_limit",
-    quote="Beyond the boundary at which the steeper wall has $T=kN$, the only solutions "
-          "possible are ``rolling-sliding\" solutions, in which one contact rolls without "
-          "sliding while the other slides.",
-    method=f"On the {GRID_N - 1}^2 interior grid for each k: where double rolling is "
-           "invalid, is the rolling-sliding state valid (d_L >= 0, mu <= k)? Alternatives: "
-           "the shallower wall sliding (mirrored mu formula, admissible only if its "
-           "denominator > 0 and T/N_L <= k) and double sliding (horizontal balance "
-           "residual 2 sin delta (cos gamma + k sin gamma) N).",
-)
+@claim("rs_only_solution_beyond_limit")
 def check_rs_only(ctx: Context) -> Finding:
     G, D = ctx.grid()
     dr = ctx.dr_grid()
@@ -74,13 +49,7 @@ def check_rs_only(ctx: Context) -> Finding:
         per_k[k_label(k)] = row
         ok &= (row["of which without an RS state"] == 0 and row["admissible right-wall sliding"] == 0
                and row["min double-sliding residual"] > 0.0)
-    return Finding(
-        verdict=verdict(ok),
-        summary="Everywhere beyond the limit the steeper-wall rolling-sliding state is valid, "
-                "the shallower wall can never slide, double sliding is impossible off the axis; "
-                "and inside double rolling no rolling-sliding state is valid (the regimes do "
-                "not overlap).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
 def _force_balance_mu(gamma, delta, k):
@@ -97,15 +66,7 @@ def _mu(theta_L, theta_R, k):
     return np.sin(theta_R) / (np.cos(theta_R) - np.cos(theta_L) + np.sin(theta_L) / k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_mu_formula",
-    quote="The equations of static equilibrium then imply ... \\frac{T}{N_R} = "
-          "\\frac{\\sin \\theta_R}{\\cos\\theta_R - \\cos\\theta_L + \\frac{1}{k} \\sin "
-          "\\theta_L} \\equiv \\mu,",
-    method="For 300 random grooves per k: solved the vertical and horizontal balances "
-           "(paper Eqs. 1, 2) with T_L = T_R = k N_L as a 2x2 linear system for (N_L, N_R) "
-           "and compared k N_L / N_R with the formula.",
-)
+@claim("rs_mu_formula")
 def check_rs_mu_formula(ctx: Context) -> Finding:
     rng = np.random.default_rng(20260101)
     per_k, ok = {}, True
@@ -118,10 +79,7 @@ def check_rs_mu_formula(ctx: Context) -> Finding:
             errs.append(abs(mu_fb / _mu(gi + di, gi - di, k) - 1.0))
         per_k[k_label(k)] = {"max relative difference": float(max(errs))}
         ok &= max(errs) <= IDENTITY_TOL
-    return Finding(
-        verdict=verdict(ok),
-        summary="The formula is what the balances give (relative differences at round-off).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
 def _theta_grid(n=400, shallower_left=False):
@@ -132,13 +90,7 @@ def _theta_grid(n=400, shallower_left=False):
     return TL[keep], TR[keep]
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_mu_below_k",
-    quote="Note that for $\\theta_R < \\theta_L$, $\\mu < k$",
-    method="mu/k on a grid of {pairs} pairs 0 <= theta_R < theta_L, theta_L + theta_R <= "
-           "pi. Analytically k - mu has the sign of sin theta_L - sin theta_R + k (cos "
-           "theta_R - cos theta_L) = 2 sin delta (cos gamma + k sin gamma) > 0.",
-)
+@claim("rs_mu_below_k")
 def check_rs_mu_below(ctx: Context) -> Finding:
     tL, tR = _theta_grid()
     per_k, ok = {}, True
@@ -148,21 +100,10 @@ def check_rs_mu_below(ctx: Context) -> Finding:
                              "min denominator": float(np.min(np.cos(tR) - np.cos(tL)
                                                               + np.sin(tL) / k))}
         ok &= per_k[k_label(k)]["max mu / k"] < 1.0
-    return Finding(
-        verdict=verdict(ok),
-        summary="mu < k at every point (and the denominator is positive).",
-        numbers=per_k,
-        method_values=dict(pairs=tL.size))
+    return Finding(verdict(ok), numbers=per_k, method_values=dict(pairs=tL.size))
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_mu_above_k_if_shallower_slides",
-    quote="while for $\\theta_R > \\theta_L$, $\\mu > k$.",
-    method="mu from the formula on a grid of {pairs} pairs 0 <= theta_L < theta_R, "
-           "theta_L + theta_R <= pi (the left, sliding wall is now the shallower one) for "
-           "each k, with the sign of its denominator; at the counterexample, the balances "
-           "(Eqs. 1-2 with T = k N_L) solved as a 2x2 linear system for (N_L, N_R).",
-)
+@claim("rs_mu_above_k_if_shallower_slides")
 def check_rs_mu_above(ctx: Context) -> Finding:
     tL, tR = _theta_grid(shallower_left=True)
     ordinary = (tL >= 0.05) & (tR <= HALF_PI - 0.05)  # both walls between 0.05 and pi/2 - 0.05
@@ -214,15 +155,7 @@ def check_rs_mu_above(ctx: Context) -> Finding:
         method_values=dict(pairs=tL.size))
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_sliding_on_steeper_wall",
-    quote="Thus, sliding always occurs on the steeper wall, which is indeed the left-hand "
-          "wall for $\\delta \\ge 0$.",
-    method=f"On the {GRID_N - 1}^2 interior grid (delta > 0): whether a state with the "
-           "right (shallower) wall sliding, T = k N_R, could satisfy the balances with "
-           "N_L > 0 and T/N_L <= k; and whether the left (steeper) wall sliding is "
-           "admissible wherever double rolling fails.",
-)
+@claim("rs_sliding_on_steeper_wall")
 def check_rs_sliding_steeper(ctx: Context) -> Finding:
     G, D = ctx.grid()
     tL, tR = G + D, G - D
@@ -238,20 +171,10 @@ def check_rs_sliding_steeper(ctx: Context) -> Finding:
                              "DR-invalid points": int(beyond.sum()),
                              "of which left-wall sliding admissible": left_ok}
         ok &= admissible.sum() == 0 and left_ok == beyond.sum()
-    return Finding(
-        verdict=verdict(ok),
-        summary="The shallower wall can never be the sliding one off the axis; every "
-                "rolling-sliding state slips on the left (steeper) wall.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_continues_dr",
-    quote="This is the simplest continuation of the double-rolling solution, which failed "
-          "at the boundary through incipient sliding at the steeper wall.",
-    method=f"On {LINE_N - 1} points of the double-rolling limit per k (bracketed roots of "
-           "T/N_L = k): the double-rolling and rolling-sliding states compared.",
-)
+@claim("rs_continues_dr")
 def check_rs_continuation(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -263,23 +186,10 @@ def check_rs_continuation(ctx: Context) -> Finding:
                "max |d_L(RS)|": float(np.max(np.abs(rs["d_L"])))}
         per_k[k_label(k)] = row
         ok &= max(row.values()) <= 1e-8
-    return Finding(
-        verdict=verdict(ok),
-        summary="On the limit the two states coincide (same beta_L, upsilon; d_L = 0): the "
-                "rolling-sliding solution continues the double-rolling one without a jump.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_beta_unique",
-    quote="\\frac{N_L}{N_R} = \\left ( \\frac{\\sin \\beta_L}{\\sin \\beta_R} \\right "
-          ")^{\\frac{3}{2}} = \\frac{\\mu}{k} , ... which can be uniquely solved for "
-          "$\\beta_L$ and $\\beta_R$.",
-    method="sin(beta_L)/sin(pi - 2 gamma - beta_L) is strictly increasing from 0 to infinity "
-           "on (0, pi - 2 gamma) (derivative sin(2 gamma)/sin^2 beta_R > 0): checked on 1999 "
-           "beta_L for 199 gammas; the solver's rolling-sliding states (closed form) "
-           "checked against N_L/N_R = mu/k on the interior grid.",
-)
+@claim("rs_beta_unique")
 def check_rs_beta_unique(ctx: Context) -> Finding:
     per_k, ok = {}, True
     # f(beta_L) = sin beta_L / sin(omega - beta_L) has derivative sin omega / sin^2 > 0.
@@ -296,19 +206,10 @@ def check_rs_beta_unique(ctx: Context) -> Finding:
         ok &= err <= IDENTITY_TOL
     return Finding(
         verdict=verdict(ok and increasing),
-        summary="The ratio is monotonic in beta_L for every 0 < gamma < pi/2, so the root is "
-                "unique, and the solver's states satisfy the equation.",
         numbers={"monotonic on every column": increasing, **per_k})
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_upsilon_from_right_wall",
-    quote="the criterion that the ball rolls at the right-hand contact implies that ... "
-          "\\frac{T}{N_R} = \\mu = \\frac{\\cos \\beta_R - \\upsilon}{\\sin \\beta_R}, ... "
-          "which allows us to solve for $\\upsilon(\\beta_R)$.",
-    method="The rolling right wall's proportional loading (u_t/u_n = T/N) evaluated at the "
-           "solver's rolling-sliding states on the interior grid.",
-)
+@claim("rs_upsilon_from_right_wall")
 def check_rs_upsilon(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -318,22 +219,10 @@ def check_rs_upsilon(ctx: Context) -> Finding:
         err = float(np.max(np.abs(lhs - rs["mu"][keep]) / np.maximum(rs["mu"][keep], 1.0)))
         per_k[k_label(k)] = {"max error of mu = (cos beta_R - upsilon)/sin beta_R": err}
         ok &= err <= IDENTITY_TOL
-    return Finding(
-        verdict=verdict(ok),
-        summary="Satisfied to round-off; upsilon = cos beta_R - mu sin beta_R is explicit.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_dL_boundary_is_dr_limit",
-    quote="The physical constraint $d_L > 0$ sets the boundary on the region with a "
-          "rolling-sliding solution, which, for $\\gamma < \\arctan(k)$, coincides with the "
-          "upper boundary of the double rolling solution discussed in the previous section.",
-    method=f"On {LINE_N - 1} columns gamma < arctan k per k: the root of d_L = 0 of the "
-           "rolling-sliding state and the root of T/N_L = k of the double-rolling state, "
-           "both bracketed independently; d_L on the interior grid beyond arctan k; the "
-           "tracer's distance between rs_limit and dr_limit.",
-)
+@claim("rs_dL_boundary_is_dr_limit")
 def check_rs_dL_boundary(ctx: Context) -> Finding:
     G, _ = ctx.grid()
     per_k, ok = {}, True
@@ -350,12 +239,7 @@ def check_rs_dL_boundary(ctx: Context) -> Finding:
         per_k[k_label(k)] = row
         ok &= row["max |delta(d_L = 0) - delta(T/N_L = k)|"] <= POINT_TOL and (
             not np.any(beyond) or row["min d_L for gamma > arctan k"] > 0.0)
-    return Finding(
-        verdict=verdict(ok),
-        summary="The two curves are the same to round-off for gamma < arctan k; beyond arctan k "
-                "d_L > 0 for all delta > 0, so there the rolling-sliding region reaches down "
-                "to the axis.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
 def _axis_limit_points(ctx: Context, k: float, n: int = 200):
@@ -363,14 +247,7 @@ def _axis_limit_points(ctx: Context, k: float, n: int = 200):
     return g
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_delta0_upsilon_zero",
-    quote="For $\\delta = 0$ we have $\\upsilon = 0$",
-    method="The rolling-sliding state on and next to the axis, for 199 gammas in (arctan k, "
-           "pi/2) per k (where rolling sliding is the regime next to the axis): the paper's "
-           "formulas at delta = 0 (mu = k, beta_L = beta_R = pi/2 - gamma, upsilon = cos "
-           "beta_R - mu sin beta_R) and the point solver at delta = 1e-9.",
-)
+@claim("rs_delta0_upsilon_zero")
 def check_rs_delta0_upsilon(ctx: Context) -> Finding:
     per_k, ok, ce = {}, True, None
     for k in ctx.ks:
@@ -401,23 +278,10 @@ def check_rs_delta0_upsilon(ctx: Context) -> Finding:
                  "upsilon = sin gamma - k cos gamma > 0 for gamma > arctan k, not 0; "
                  "upsilon = 0 only at gamma = arctan k, where the rolling-sliding upsilon = 0 "
                  "line starts")
-    return Finding(
-        verdict=verdict(ok),
-        summary="upsilon = 0 on the axis." if ok else
-                "False: on the axis mu = k and beta_R = pi/2 - gamma give upsilon = sin gamma - "
-                "k cos gamma, which is positive (counter-clockwise) for every gamma > arctan k "
-                "and vanishes only at gamma = arctan k; the limit delta -> 0+ of the solver "
-                "agrees.",
-        numbers=per_k,
-        counterexample=ce)
+    return Finding(verdict(ok), numbers=per_k, counterexample=ce)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_delta0_ratio_k",
-    quote="and $T/N_R =k$",
-    method="mu = T/N_R of the rolling-sliding state at delta = 0 and 1e-9 for 199 gammas in "
-           "(arctan k, pi/2) per k.",
-)
+@claim("rs_delta0_ratio_k")
 def check_rs_delta0_ratio(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -428,21 +292,10 @@ def check_rs_delta0_ratio(ctx: Context) -> Finding:
                              "max |mu/k - 1| at delta = 1e-9":
                                   float(np.max(np.abs(near["mu"] / k - 1)))}
         ok &= per_k[k_label(k)]["max |mu/k - 1| at delta = 0"] <= IDENTITY_TOL
-    return Finding(
-        verdict=verdict(ok),
-        summary="mu = k on the axis (theta_L = theta_R makes the formula sin theta / (sin "
-                "theta / k)).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_delta0_collapses_to_double_sliding",
-    quote="and this solution collapses onto a double sliding solution for $\\gamma > "
-          "\\arctan(k)$.",
-    method="The point solver at delta = 1e-9 (rolling sliding) against delta = 0 (its "
-           "symmetric double-sliding state) for 199 gammas in (arctan k, pi/2) per k: "
-           "forces (N_L/N_R, T/N_R) and kinematics (upsilon, d_L, d_R).",
-)
+@claim("rs_delta0_collapses_to_double_sliding")
 def check_rs_delta0_double_sliding(ctx: Context) -> Finding:
     per_k, forces_ok, kinematics_same = {}, True, True
     for k in ctx.ks:
@@ -476,27 +329,11 @@ def check_rs_delta0_double_sliding(ctx: Context) -> Finding:
                  "(d_R = 0) and the ball turns counter-clockwise, whereas the symmetric "
                  "double-sliding state has upsilon = 0 and d_L = d_R; on the axis the "
                  "kinematics is indeterminate (any |upsilon| <= sin gamma - k cos gamma)")
-    return Finding(
-        verdict=verdict(forces_ok, qualified=not kinematics_same),
-        summary="The forces collapse: N_L/N_R -> 1 and T/N_R -> k, so T = kN on both walls. "
-                "The kinematics does not: the limit has d_R = 0, d_L = 2 (sin gamma - k cos "
-                "gamma) and upsilon = sin gamma - k cos gamma, one end of the one-parameter "
-                "family of double-sliding motions on the axis, not the symmetric one "
-                "(upsilon = 0, d_L = d_R)." if forces_ok and not kinematics_same else
-                "Forces and kinematics both collapse onto double sliding." if forces_ok else
-                "The forces do not collapse onto double sliding.",
-        numbers=per_k,
-        counterexample=ce)
+    return Finding(verdict(forces_ok, qualified=not kinematics_same), numbers=per_k,
+                   counterexample=ce)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_no_roll_line_stuck",
-    quote="In addition, there is a line of solutions with $\\upsilon =0$, corresponding to "
-          "one contact sliding and the other being stuck.",
-    method=f"The rolling-sliding upsilon = 0 line by bracketed root finding on {LINE_N - 1} "
-           "rows delta in (0, pi/4) per k; on its physical part (d_L >= 0) the contact "
-           "motions u_c;R = Z upsilon + d_R and u_c;L = -Z upsilon + d_L.",
-)
+@claim("rs_no_roll_line_stuck")
 def check_rs_no_roll_stuck(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -510,12 +347,7 @@ def check_rs_no_roll_stuck(ctx: Context) -> Finding:
                "min u_c;L / Z (sliding)": float(np.min(u_cL)) if physical.any() else math.nan}
         per_k[k_label(k)] = row
         ok &= physical.sum() > 0 and row["max |u_c;R| / Z (stuck)"] <= 1e-12
-    return Finding(
-        verdict=verdict(ok),
-        summary="For every k the line exists; on it the right contact does not move (stuck) "
-                "and the left one slips down its wall (d_L > 0 except at its lower end on the "
-                "limit).",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
 
 
 def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
@@ -544,15 +376,7 @@ def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
                 end_near_corner=end_near_corner, tracer_start=tr_start, tracer_end=tr_end)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_no_roll_small_k_ends",
-    quote="For $k < \\sqrt{2}$ this line emanates from $(\\gamma,\\delta) = (\\arctan(k), 0)$ "
-          "and ends at $(\\gamma,\\delta) = (\\frac{\\pi}{4},\\frac{\\pi}{4})$",
-    method="For each k < sqrt 2: sign changes of the rolling-sliding upsilon along 99 rows "
-           f"delta in (0, pi/4) (2001 gammas each); the line on {LINE_N - 1} rows by bracketed root "
-           "finding, its d_L, and its gamma at delta = 1e-7 and pi/4 - 1e-7; the tracer's "
-           "rs_no_roll end points.",
-)
+@claim("rs_no_roll_small_k_ends")
 def check_rs_no_roll_small_k(ctx: Context) -> Finding:
     per_k, ok, checked = {}, True, 0
     for k in ctx.ks:
@@ -571,25 +395,10 @@ def check_rs_no_roll_small_k(ctx: Context) -> Finding:
         ok &= (bool(np.all(e["crossings"] == 1)) and row["all physical"]
                and abs(e["start_near_axis"] - math.atan(k)) < 1e-5
                and abs(e["end_near_corner"] - 0.25 * math.pi) < 1e-5)
-    return Finding(
-        verdict=verdict(ok and checked > 0),
-        summary="Exactly one crossing per row; the whole line is physical and runs from "
-                "(arctan k, 0) to (pi/4, pi/4) (for k near 1 it turns back in gamma on the way).",
-        numbers=per_k)
+    return Finding(verdict(ok and checked > 0), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_no_roll_large_k_ends",
-    quote="For $k > \\sqrt{2}$, this line emanates from the point on the boundary of the "
-          "double rolling region for which $\\upsilon=0$, and ends at $(\\gamma,\\delta) = "
-          "(\\frac{\\pi}{4},\\frac{\\pi}{4})$",
-    method=f"For each k > sqrt 2: the rolling-sliding upsilon = 0 line on {LINE_N - 1} rows (bracketed "
-           "roots), its physical part d_L >= 0 and the exact start of that part (brentq on "
-           "d_L along the line), compared with the point of the double-rolling limit where "
-           "upsilon = 0 found from the double-rolling equations alone (cot beta_L = k on "
-           "the double-rolling upsilon = 0 line, polished by Newton); the tracer's "
-           "rs_no_roll.",
-)
+@claim("rs_no_roll_large_k_ends")
 def check_rs_no_roll_large_k(ctx: Context) -> Finding:
     per_k, ok, checked = {}, True, 0
     for k in ctx.ks:
@@ -623,22 +432,10 @@ def check_rs_no_roll_large_k(ctx: Context) -> Finding:
         ok &= (bool(np.all(e["crossings"] == 1)) and e["switches"] == 1
                and row["distance"] <= POINT_TOL
                and abs(e["end_near_corner"] - 0.25 * math.pi) < 1e-5)
-    return Finding(
-        verdict=verdict(ok and checked > 0),
-        summary="The full zero set of upsilon still starts at (arctan k, 0), but its part below "
-                "the limit lies inside double rolling (d_L < 0, unphysical); the physical part "
-                "is one piece from the upsilon = 0 point of the limit (the two independent "
-                "computations agree) to (pi/4, pi/4).",
-        numbers=per_k)
+    return Finding(verdict(ok and checked > 0), numbers=per_k)
 
 
-@ROLLING_SLIDING.claim(
-    id="rs_no_roll_sides",
-    quote="As for the double rolling $\\upsilon=0$ line, this line separates the "
-          "low-$\\gamma$ clockwise rolling from the high-$\\gamma$ counterclockwise rolling.",
-    method=f"On each row delta > 0 of the {MAP_N}-step map grid: the rolling-sliding nodes "
-           "must be clockwise up to at most one change and counter-clockwise after it.",
-)
+@claim("rs_no_roll_sides")
 def check_rs_no_roll_sides(ctx: Context) -> Finding:
     per_k, ok = {}, True
     for k in ctx.ks:
@@ -647,8 +444,4 @@ def check_rs_no_roll_sides(ctx: Context) -> Finding:
         per_k[k_label(k)] = {"rows with a change in RS": int(np.count_nonzero(changes)),
                              "rows violating": bad}
         ok &= bad == 0
-    return Finding(
-        verdict=verdict(ok),
-        summary="On every row rolling sliding is clockwise at low gamma and counter-clockwise "
-                "at high gamma, with at most one change.",
-        numbers=per_k)
+    return Finding(verdict(ok), numbers=per_k)
