@@ -1,6 +1,5 @@
 """The audit of the paper's claims: quotes, counterexamples re-checked, report files, CLI."""
 
-import argparse
 import json
 import math
 import re
@@ -13,10 +12,8 @@ from groove_model.analysis.audit import run as audit_run
 from groove_model.analysis.audit.context import sign_changes
 from groove_model.analysis.audit.report import DEFAULT_KS, VERDICTS, Claim, normalise_tex
 from groove_model.analysis.audit.run import run_audit
-from groove_model.cli.audit import add_parser as add_audit_command
 from groove_model.cli.common import EXIT_USAGE, UsageError
 from groove_model.cli.main import build_parser
-from groove_model.cli.map import add_parser as add_map_command
 from groove_model.model.boundaries import boundary_system
 from groove_model.model.equilibrium import (
     double_rolling_state,
@@ -249,19 +246,9 @@ def test_audit_rejects_bad_friction():
 # --------------------------------------------------------------------------------------------
 
 
-def _parser():
-    parser = build_parser()
-    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    if "map" not in sub.choices:
-        add_map_command(sub)
-    if "audit" not in sub.choices:
-        add_audit_command(sub)
-    return parser
-
-
 def run_cli(argv):
     """Parse and run like ``groove_model.cli.main`` (exit code 2 for bad input)."""
-    parser = _parser()
+    parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.run(args)

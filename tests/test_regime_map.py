@@ -14,11 +14,11 @@ from matplotlib.colors import to_rgba
 from matplotlib.image import AxesImage
 from matplotlib.lines import Line2D
 
+from groove_model.analysis.regimes import CATEGORIES, OUTSIDE, classify_grid, classify_points
 from groove_model.model.boundaries import boundary_system
 from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
-from groove_model.model.parameters import Parameters
-from groove_model.analysis.regimes import CATEGORIES, OUTSIDE, classify_grid, classify_points
 from groove_model.model.lines import dr_limit_no_roll_point, dr_no_roll_line
+from groove_model.model.parameters import Parameters
 from groove_model.plots import regime_map
 from groove_model.plots.regime_map import (
     CATEGORY_COLOURS,

@@ -1,11 +1,11 @@
-"""The claims of the caption of the paper's Fig. 2 about the regions the curves separate, checked."""
+"""The claims of the caption of the paper's Fig. 2 about the regions the curves separate."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from ..regimes import CATEGORIES
-from .context import MAP_N, Context, k_label
+from .context import Context, k_label
 from .registry import Finding, claim, verdict
 
 # The checks are registered with @claim and run by run.run_audit, not imported by name.

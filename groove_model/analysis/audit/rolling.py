@@ -15,8 +15,8 @@ from ...model.equilibrium import double_rolling_state, solve_equilibrium
 from ...model.lines import bracketed_root, dr_limit_delta, dr_margins
 from ...model.parameters import Parameters
 from ..regimes import CATEGORIES
-from .context import (GRID_N, HALF_PI, IDENTITY_TOL, LINE_N, MAP_N, SQRT2, Context, distance,
-                      first_special_point, k_label, rotation_changes, sign_changes)
+from .context import (HALF_PI, IDENTITY_TOL, SQRT2, Context, distance, first_special_point, k_label,
+                      rotation_changes, sign_changes)
 from .registry import Finding, claim, verdict
 from .report import Counterexample
 
@@ -57,7 +57,8 @@ def check_dr_contacts(ctx: Context) -> Finding:
                 "other down (clockwise: the left contact moves down its wall). Exceptions: "
                 "the axis delta = 0 (upsilon = 0 exactly, both contacts stuck, as the paper "
                 "itself says two sentences later) and, for k > sqrt 2, the upsilon = 0 line "
-                f"inside double rolling (present here for k = {', '.join(f'{k:g}' for k in exceptions) or 'none'}).",
+                "inside double rolling (present here for k = "
+                f"{', '.join(f'{k:g}' for k in exceptions) or 'none'}).",
         numbers=per_k,
         counterexample=ce)
 
@@ -129,10 +130,12 @@ def check_delta0_state(ctx: Context) -> Finding:
     def reduced(beta, gg):
         return (np.sin(beta) ** 1.5 - np.sin(math.pi - 2.0 * gg - beta) ** 1.5) * np.sin(gg)
 
-    beta_root = bracketed_root(reduced, np.full_like(g, 1e-12), math.pi - 2.0 * g - 1e-12, args=(g,))
+    beta_root = bracketed_root(reduced, np.full_like(g, 1e-12), math.pi - 2.0 * g - 1e-12,
+                               args=(g,))
     err_beta = float(np.max(np.abs(beta_root - (HALF_PI - g))))
     # The limit delta -> 0+: the deviation must shrink in proportion to delta (it is large
-    # only near the closed-groove edge gamma -> pi/2, where it scales like delta / (pi - 2 gamma)^2).
+    # only near the closed-groove edge gamma -> pi/2, where it scales like
+    # delta / (pi - 2 gamma)^2).
     devs = []
     for small in (1e-9, 1e-12):
         near = double_rolling_state(g, np.full_like(g, small), Parameters(1.0))

@@ -16,8 +16,8 @@ from scipy import optimize
 from ...model.equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
 from ...model.lines import rs_limit_delta, rs_no_roll_gamma
 from ...model.parameters import Parameters
-from .context import (CORNER, GRID_N, HALF_PI, IDENTITY_TOL, LINE_N, MAP_N, POINT_TOL, SQRT2,
-                      VIOLATION, Context, distance, k_label, rotation_changes, sign_changes)
+from .context import (CORNER, HALF_PI, IDENTITY_TOL, POINT_TOL, SQRT2, VIOLATION, Context, distance,
+                      k_label, rotation_changes, sign_changes)
 from .registry import Finding, claim, verdict
 from .report import Counterexample
 
@@ -47,7 +47,8 @@ def check_rs_only(ctx: Context) -> Finding:
                "admissible right-wall sliding": int(np.count_nonzero(mirror_ok)),
                "min double-sliding residual": float(ds_residual.min())}
         per_k[k_label(k)] = row
-        ok &= (row["of which without an RS state"] == 0 and row["admissible right-wall sliding"] == 0
+        ok &= (row["of which without an RS state"] == 0
+               and row["admissible right-wall sliding"] == 0
                and row["min double-sliding residual"] > 0.0)
     return Finding(verdict(ok), numbers=per_k)
 
@@ -83,7 +84,8 @@ def check_rs_mu_formula(ctx: Context) -> Finding:
 
 
 def _theta_grid(n=400, shallower_left=False):
-    """Wall angles with ``theta_R < theta_L`` (or ``>`` if ``shallower_left``), ``theta_L + theta_R <= pi``."""
+    """Wall angles with ``theta_R < theta_L`` (or ``>`` if ``shallower_left``) and
+    ``theta_L + theta_R <= pi``."""
     t = np.linspace(0.0, math.pi, n + 1)
     TL, TR = np.meshgrid(t, t)
     keep = (TL + TR <= math.pi) & ((TR > TL) if shallower_left else (TR < TL))
@@ -116,7 +118,8 @@ def check_rs_mu_above(ctx: Context) -> Finding:
         below = mu <= k
         per_k[k_label(k)] = {"pairs": int(tL.size), "pairs with mu <= k": int(below.sum()),
                              "of which denominator > 0": int(np.count_nonzero(below & (den > 0))),
-                             "ordinary grooves with mu <= k": int(np.count_nonzero(below & ordinary))}
+                             "ordinary grooves with mu <= k":
+                                 int(np.count_nonzero(below & ordinary))}
         ok &= not np.any(below)
         if np.any(below & ordinary):
             # A representative violation: the ordinary groove with the most negative denominator.
@@ -182,7 +185,8 @@ def check_rs_continuation(ctx: Context) -> Finding:
         dr = double_rolling_state(g, d, Parameters(1.0))
         rs = rolling_sliding_state(g, d, Parameters(k))
         row = {"max |beta_L(DR) - beta_L(RS)|": float(np.max(np.abs(dr["beta_L"] - rs["beta_L"]))),
-               "max |upsilon(DR) - upsilon(RS)|": float(np.max(np.abs(dr["upsilon"] - rs["upsilon"]))),
+               "max |upsilon(DR) - upsilon(RS)|":
+                   float(np.max(np.abs(dr["upsilon"] - rs["upsilon"]))),
                "max |d_L(RS)|": float(np.max(np.abs(rs["d_L"])))}
         per_k[k_label(k)] = row
         ok &= max(row.values()) <= 1e-8
@@ -288,7 +292,8 @@ def check_rs_delta0_ratio(ctx: Context) -> Finding:
         g = _axis_limit_points(ctx, k)
         at0 = rolling_sliding_state(g, np.zeros_like(g), Parameters(k))
         near = rolling_sliding_state(g, np.full_like(g, 1e-9), Parameters(k))
-        per_k[k_label(k)] = {"max |mu/k - 1| at delta = 0": float(np.max(np.abs(at0["mu"] / k - 1))),
+        per_k[k_label(k)] = {"max |mu/k - 1| at delta = 0":
+                                 float(np.max(np.abs(at0["mu"] / k - 1))),
                              "max |mu/k - 1| at delta = 1e-9":
                                   float(np.max(np.abs(near["mu"] / k - 1)))}
         ok &= per_k[k_label(k)]["max |mu/k - 1| at delta = 0"] <= IDENTITY_TOL
@@ -304,7 +309,8 @@ def check_rs_delta0_double_sliding(ctx: Context) -> Finding:
         axis = solve_equilibrium(g, np.zeros_like(g), k)
         row = {"max |N_L/N_R - 1|": float(np.max(np.abs(near.N_L_over_N_R - 1))),
                "max |T/N_R - k| / k": float(np.max(np.abs(near.T_over_N_R - k)) / k),
-               "max |upsilon(0+) - upsilon(DS)|": float(np.max(np.abs(near.upsilon - axis.upsilon))),
+               "max |upsilon(0+) - upsilon(DS)|":
+                   float(np.max(np.abs(near.upsilon - axis.upsilon))),
                "max d_R(0+)": float(np.max(near.d_R)),
                "max |d_L(0+) - 2 (sin gamma - k cos gamma)|":
                    float(np.max(np.abs(near.d_L - 2 * (np.sin(g) - k * np.cos(g)))))}
@@ -343,11 +349,16 @@ def check_rs_no_roll_stuck(ctx: Context) -> Finding:
         u_cR = st["upsilon"][physical]
         u_cL = -st["upsilon"][physical] + st["d_L"][physical]
         row = {"physical points": int(physical.sum()),
-               "max |u_c;R| / Z (stuck)": float(np.max(np.abs(u_cR))) if physical.any() else math.nan,
+               "max |u_c;R| / Z (stuck)":
+                   float(np.max(np.abs(u_cR))) if physical.any() else math.nan,
                "min u_c;L / Z (sliding)": float(np.min(u_cL)) if physical.any() else math.nan}
         per_k[k_label(k)] = row
         ok &= physical.sum() > 0 and row["max |u_c;R| / Z (stuck)"] <= 1e-12
     return Finding(verdict(ok), numbers=per_k)
+
+
+def _min_max(values: np.ndarray) -> tuple:
+    return int(values.min()), int(values.max())
 
 
 def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
@@ -357,7 +368,8 @@ def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
     rows = 0.25 * math.pi * np.linspace(0.0, 1.0, 101)[1:-1]
     cols = np.linspace(0.0, 1.0, 2001)[None, :]
     G = rows[:, None] + (HALF_PI - rows[:, None]) * cols
-    ups = rolling_sliding_state(G, np.broadcast_to(rows[:, None], G.shape), Parameters(k))["upsilon"]
+    D = np.broadcast_to(rows[:, None], G.shape)
+    ups = rolling_sliding_state(G, D, Parameters(k))["upsilon"]
     crossings = sign_changes(ups, axis=1)
     physical = st["d_L"] >= 0.0
     first = int(np.argmax(physical)) if physical.any() else None
@@ -383,13 +395,14 @@ def check_rs_no_roll_small_k(ctx: Context) -> Finding:
         if k >= SQRT2:
             continue
         e = _rs_no_roll_ends(ctx, k)
-        row = {"crossings per row (min, max)": (int(e["crossings"].min()), int(e["crossings"].max())),
+        row = {"crossings per row (min, max)": _min_max(e["crossings"]),
                "all physical": bool(np.all(e["physical"])),
                "gamma at delta = 1e-7": e["start_near_axis"], "arctan k": math.atan(k),
                "gamma at delta = pi/4 - 1e-7": e["end_near_corner"],
                "tracer: |start - (arctan k, 0)|": distance(e["tracer_start"], (math.atan(k), 0.0)),
                "tracer: |end - (pi/4, pi/4)|": distance(e["tracer_end"], CORNER),
-               "turns back in gamma": bool(np.any(np.diff(e["g"]) > 0) and np.any(np.diff(e["g"]) < 0))}
+               "turns back in gamma":
+                   bool(np.any(np.diff(e["g"]) > 0) and np.any(np.diff(e["g"]) < 0))}
         per_k[k_label(k)] = row
         checked += 1
         ok &= (bool(np.all(e["crossings"] == 1)) and row["all physical"]
@@ -419,7 +432,7 @@ def check_rs_no_roll_large_k(ctx: Context) -> Finding:
             g_end = float(rs_no_roll_gamma(k, np.array([d_end]))[0])
         else:
             d_end = g_end = math.nan
-        row = {"crossings per row (min, max)": (int(e["crossings"].min()), int(e["crossings"].max())),
+        row = {"crossings per row (min, max)": _min_max(e["crossings"]),
                "unphysical/physical switches on the line": e["switches"],
                "physical part from (gamma, delta)": (g_end, d_end),
                "DR-limit upsilon = 0 point": (float(junction[0]), float(junction[1])),
