@@ -50,7 +50,7 @@ def _exact_fold(system, y: np.ndarray) -> np.ndarray:
 
 
 def _ours_fold_error(boundary_set) -> tuple[float | None, int]:
-    from groove_model.boundaries import BoundarySystem
+    from groove_model.model.boundaries import BoundarySystem
 
     worst, count = None, 0
     for name, curve in boundary_set.curves.items():
@@ -67,7 +67,7 @@ def _ours_fold_error(boundary_set) -> tuple[float | None, int]:
 
 
 def _params(k):
-    from groove_model.parameters import Parameters
+    from groove_model.model.parameters import Parameters
 
     return Parameters(k)
 
@@ -157,8 +157,8 @@ def _distance(points: np.ndarray, pieces) -> np.ndarray:
 def _fsolve_dr_limit(k: float, n_points: int):
     from scipy.optimize import fsolve
 
-    from groove_model.boundaries import BoundarySystem, limit_seed
-    from groove_model.parameters import Parameters
+    from groove_model.model.boundaries import BoundarySystem, limit_seed
+    from groove_model.model.parameters import Parameters
 
     params = Parameters(k)
     system = BoundarySystem("dr_limit", params)
@@ -188,7 +188,7 @@ def _error_at_gamma(xs: np.ndarray, boundary) -> float:
     Our point at each gamma is corrected onto the curve by Newton (``Curve.point_where``),
     not interpolated; the seed itself is skipped (it is the common start).
     """
-    from groove_model.boundaries import BoundarySystem
+    from groove_model.model.boundaries import BoundarySystem
 
     engine = boundary.engine[0]
     system = BoundarySystem(boundary.name, _params(boundary.k), "sqrt_beta_L")

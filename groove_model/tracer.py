@@ -51,7 +51,7 @@ from scipy.linalg.lapack import dgesv
 
 from continuation import Curve, Event, Options, Problem, SpecialKind, trace
 
-from .boundaries import (
+from .model.boundaries import (
     BOUNDARY_NAMES,
     BoundarySystem,
     Condition,
@@ -59,7 +59,7 @@ from .boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from .parameters import Parameters
+from .model.parameters import Parameters
 from .topology import CurveTopology, expected_topology
 
 __all__ = [

@@ -1,6 +1,5 @@
 """The audit of the paper's claims: quotes, counterexamples re-checked, report files, CLI."""
 
-import argparse
 import json
 import math
 import re
@@ -9,26 +8,20 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from groove_model import audit
-from groove_model.audit import (
-    DEFAULT_KS,
-    VERDICTS,
-    Claim,
-    dr_limit_delta,
-    normalise_tex,
-    rs_limit_delta,
-    rs_no_roll_gamma,
-    run_audit,
-)
-from groove_model.boundaries import boundary_system
-from groove_model.cli import EXIT_USAGE, UsageError, build_parser
-from groove_model.cli_analysis import add_audit_command, add_map_command
-from groove_model.equilibrium import (
+from groove_model.analysis.audit import run as audit_run
+from groove_model.analysis.audit.context import sign_changes
+from groove_model.analysis.audit.report import DEFAULT_KS, VERDICTS, Claim, normalise_tex
+from groove_model.analysis.audit.run import run_audit
+from groove_model.cli.common import EXIT_USAGE, UsageError
+from groove_model.cli.main import build_parser
+from groove_model.model.boundaries import boundary_system
+from groove_model.model.equilibrium import (
     double_rolling_state,
     rolling_sliding_state,
     solve_equilibrium,
 )
-from groove_model.parameters import Parameters
+from groove_model.model.lines import dr_limit_delta, rs_limit_delta, rs_no_roll_gamma
+from groove_model.model.parameters import Parameters
 
 # shared/ sits beside the repository (here and in CI).
 PAPER = Path(__file__).resolve().parents[2] / "shared" / "paper" / "ball_in_a_groove.tex"
@@ -200,7 +193,7 @@ def test_rs_no_roll_rows_solve_the_boundary_equations(k):
 
 def test_sign_changes_count_through_zeros():
     values = np.array([[-1.0, 0.0, 1.0, 2.0], [-1.0, 0.0, -1.0, -2.0], [0.0, 1.0, -1.0, 1.0]])
-    assert audit._sign_changes(values, axis=1).tolist() == [1, 0, 2]
+    assert sign_changes(values, axis=1).tolist() == [1, 0, 2]
 
 
 # --------------------------------------------------------------------------------------------
@@ -253,19 +246,9 @@ def test_audit_rejects_bad_friction():
 # --------------------------------------------------------------------------------------------
 
 
-def _parser():
-    parser = build_parser()
-    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
-    if "map" not in sub.choices:
-        add_map_command(sub)
-    if "audit" not in sub.choices:
-        add_audit_command(sub)
-    return parser
-
-
 def run_cli(argv):
     """Parse and run like ``groove_model.cli.main`` (exit code 2 for bad input)."""
-    parser = _parser()
+    parser = build_parser()
     args = parser.parse_args(argv)
     try:
         return args.run(args)
@@ -334,13 +317,12 @@ def test_map_cli_writes_png_and_svg(tmp_path, capsys):
 
 
 def test_computation_failures_exit_1(tmp_path, monkeypatch, capsys):
-    from groove_model import audit as audit_module
     from groove_model import tracer
 
     def broken(*args, **kwargs):
         raise ArithmeticError("root finding failed for 3 brackets")
 
-    monkeypatch.setattr(audit_module, "run_audit", broken)
+    monkeypatch.setattr(audit_run, "run_audit", broken)
     assert run_cli(["audit", "-k", "1"]) == 1
     assert "computation failed" in capsys.readouterr().err
     monkeypatch.setattr(tracer, "trace_boundaries", broken)

@@ -7,15 +7,15 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from groove_model.boundaries import (
+from groove_model.model.boundaries import (
     BOUNDARY_NAMES,
     boundary_system,
     corner_point,
     dr_no_roll_branch_point,
     limit_seed,
 )
-from groove_model.equilibrium import solve_equilibrium
-from groove_model.parameters import Compliance, Parameters
+from groove_model.model.equilibrium import solve_equilibrium
+from groove_model.model.parameters import Compliance, Parameters
 
 
 def central_differences(f, x, h=1e-6):

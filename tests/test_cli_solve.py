@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from groove_model.cli import main
+from groove_model.cli.main import main
 
 KEYS = {"regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
         "T_over_N_L", "T_over_N_R", "d_L", "rotation"}

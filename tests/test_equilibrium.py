@@ -5,13 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from groove_model.dimensional import dimensional_state
-from groove_model.equilibrium import (
+from groove_model.model.dimensional import dimensional_state
+from groove_model.model.equilibrium import (
     _double_rolling_residual,
     regime_validity,
     solve_equilibrium,
 )
-from groove_model.parameters import Compliance, Parameters
+from groove_model.model.parameters import Compliance, Parameters
 
 KS = [0.01, 0.3, 1.0, math.sqrt(2.0), 2.0, 10.0, 1000.0]
 

@@ -8,10 +8,10 @@ import pandas as pd
 import pytest
 
 from groove_model import tracer as tracer_module
-from groove_model.boundaries import BoundarySystem
-from groove_model.cli import main
-from groove_model.export import atomic_write, read_boundaries_csv, write_boundary_set
-from groove_model.parameters import Parameters
+from groove_model.model.boundaries import BoundarySystem
+from groove_model.cli.main import main
+from groove_model.io.export import atomic_write, read_boundaries_csv, write_boundary_set
+from groove_model.model.parameters import Parameters
 from groove_model.tracer import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, trace_boundaries
 
 RESULTS = Path(__file__).resolve().parents[1] / "results"
@@ -132,7 +132,7 @@ def test_draw_boundaries_on_given_axes(written):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from groove_model.plotting import draw_boundaries
+    from groove_model.plots.overlay import draw_boundaries
 
     _, sets = written
     fig, ax = plt.subplots()

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from groove_model.equilibrium import solve_equilibrium
-from groove_model.parameters import (
+from groove_model.model.equilibrium import solve_equilibrium
+from groove_model.model.parameters import (
     Compliance,
     Parameters,
     check_domain,

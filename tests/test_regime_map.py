@@ -14,18 +14,15 @@ from matplotlib.colors import to_rgba
 from matplotlib.image import AxesImage
 from matplotlib.lines import Line2D
 
-from groove_model.boundaries import boundary_system
-from groove_model.equilibrium import double_rolling_state, solve_equilibrium
-from groove_model.parameters import Parameters
-from groove_model.regime_map import (
-    CATEGORIES,
+from groove_model.analysis.regimes import CATEGORIES, OUTSIDE, classify_grid, classify_points
+from groove_model.model.boundaries import boundary_system
+from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
+from groove_model.model.lines import dr_limit_no_roll_point, dr_no_roll_line
+from groove_model.model.parameters import Parameters
+from groove_model.plots import regime_map
+from groove_model.plots.regime_map import (
     CATEGORY_COLOURS,
     CATEGORY_LABELS,
-    OUTSIDE,
-    classify_grid,
-    classify_points,
-    dr_limit_no_roll_point,
-    dr_no_roll_line,
     draw_regime_map,
     save_regime_map,
     seed_points,
@@ -339,9 +336,7 @@ def test_map_legend_lists_only_what_is_drawn(traced):
 
 
 def test_map_without_boundaries_traces_nothing(monkeypatch):
-    from groove_model import tracer
-
-    monkeypatch.setattr(tracer, "trace_boundaries", lambda *a, **kw: pytest.fail("traced"))
+    monkeypatch.setattr(regime_map, "trace_boundaries", lambda *a, **kw: pytest.fail("traced"))
     fig, ax = plt.subplots()
     try:
         artists = draw_regime_map(ax, 2.0, n=50, boundaries=False)

@@ -23,8 +23,8 @@ import math
 import numpy as np
 import pytest
 
-from groove_model.boundaries import BoundarySystem
-from groove_model.parameters import Parameters
+from groove_model.model.boundaries import BoundarySystem
+from groove_model.model.parameters import Parameters
 from groove_model.tracer import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from groove_model import topology
-from groove_model.parameters import Compliance, Parameters
+from groove_model.model.parameters import Compliance, Parameters
 from groove_model.topology import expected_topology, thresholds
 from groove_model.tracer import DEFAULT_OPTIONS, Where, trace_boundaries
 

@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from groove_model.boundaries import BoundarySystem
-from groove_model.equilibrium import solve_equilibrium
-from groove_model.parameters import Parameters
+from groove_model.model.boundaries import BoundarySystem
+from groove_model.model.equilibrium import solve_equilibrium
+from groove_model.model.parameters import Parameters
 from groove_model.tracer import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)

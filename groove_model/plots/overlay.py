@@ -9,13 +9,21 @@ apart by line weight (thin to thick with increasing ``k``, as in the paper) and 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
+import matplotlib
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
-from .tracer import BoundarySet
+from ..io.export import atomic_write
+from ..tracer import BoundarySet
 
-__all__ = ["LINESTYLES", "draw_boundaries", "save_overlay"]
+__all__ = ["LINESTYLES", "STYLE_LABELS", "draw_boundaries", "save_overlay"]
 
 LINESTYLES = {"dr_limit": "-", "dr_no_roll": "-.", "rs_no_roll": "--"}
+#: The legend's words for each line style.
+STYLE_LABELS = {"dr_limit": "T = kN (DR | RS)", "dr_no_roll": r"$\upsilon = 0$ in DR",
+                "rs_no_roll": r"$\upsilon = 0$ in RS"}
 _MARKERS = {"start": "o", "end": "s", "junction": "D", "fold_gamma": "^", "branch_point": "*"}
 # Okabe & Ito's colour-blind-safe palette.
 _COLOURS = ("#000000", "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9")
@@ -75,22 +83,20 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
                 for kind, marker in _MARKERS.items():
                     sel = marked[marked["point"] == kind]
                     if len(sel):
-                        artists.append(ax.scatter(sel["gamma"] * scale, sel["delta"] * scale,
-                                                  marker=marker, s=60 if kind == "branch_point" else 28, color=colour, zorder=3, clip_on=False,
-                                                  edgecolors="white", linewidths=0.5))
+                        artists.append(ax.scatter(
+                            sel["gamma"] * scale, sel["delta"] * scale, marker=marker,
+                            s=60 if kind == "branch_point" else 28, color=colour, zorder=3,
+                            clip_on=False, edgecolors="white", linewidths=0.5))
     ax.set_xlim(0, top)
     ax.set_ylim(0, top * 0.55)
     ax.set_xlabel(rf"$\gamma = (\theta_L + \theta_R)/2$ ({unit})")
     ax.set_ylabel(rf"$\delta = (\theta_L - \theta_R)/2$ ({unit})")
     ax.set_aspect("equal")
     # Line styles and markers explained once, in black.
-    from matplotlib.lines import Line2D
-
     handles, labels = ax.get_legend_handles_labels()
     for name, style in LINESTYLES.items():
         handles.append(Line2D([], [], color="0.2", ls=style))
-        labels.append({"dr_limit": "T = kN (DR | RS)", "dr_no_roll": r"$\upsilon = 0$ in DR",
-                       "rs_no_roll": r"$\upsilon = 0$ in RS"}[name])
+        labels.append(STYLE_LABELS[name])
     if special_points:
         for kind, marker in _MARKERS.items():
             handles.append(Line2D([], [], color="0.2", marker=marker, ls=""))
@@ -106,31 +112,18 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     such suffix (the format's is appended, so names like ``boundaries_k0.5`` stay whole).
     SVG output is deterministic (fixed ``svg.hashsalt``, no date).
     """
-    from pathlib import Path
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from .export import atomic_write
-
     path = Path(path)
     stem = path.with_suffix("") if path.suffix.lower() in (".png", ".svg", ".pdf") else path
-    fig, ax = plt.subplots(figsize=(7.0, 4.6), layout="constrained")
-    try:
-        draw_boundaries(ax, boundary_sets, degrees=degrees)
-        ks = sorted({float(_frame(b)["k"].iloc[0]) for b in boundary_sets if len(_frame(b))})
-        ax.set_title("Regime boundaries of a ball in a groove, k = "
-                     + ", ".join(f"{k:g}" for k in ks), fontsize=10)
-        written = []
-        for fmt in formats:
-            target = stem.parent / f"{stem.name}.{fmt}"
-            with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-                written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                    tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
-        return written
-    finally:
-        plt.close(fig)
-
-
+    fig = Figure(figsize=(7.0, 4.6), layout="constrained")
+    ax = fig.subplots()
+    draw_boundaries(ax, boundary_sets, degrees=degrees)
+    ks = sorted({float(_frame(b)["k"].iloc[0]) for b in boundary_sets if len(_frame(b))})
+    ax.set_title("Regime boundaries of a ball in a groove, k = "
+                 + ", ".join(f"{k:g}" for k in ks), fontsize=10)
+    written = []
+    for fmt in formats:
+        target = stem.parent / f"{stem.name}.{fmt}"
+        with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+            written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
+                tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
+    return written

@@ -1,0 +1,109 @@
+"""What every ``groove`` command shares: exit codes, the usage error, argument types, paths.
+
+Exit codes: 0 success, 1 a computation failed (e.g. a boundary could not be traced),
+2 bad input (argument out of range, unreadable file); a message for bad input names the
+quantity, its value and the allowed range.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..model.parameters import check_friction
+
+__all__ = [
+    "COMPUTATION_ERRORS",
+    "EXIT_FAILED",
+    "EXIT_OK",
+    "EXIT_USAGE",
+    "FIGURE_FORMATS",
+    "UsageError",
+    "add_command",
+    "figure_target",
+    "friction",
+    "output_directory",
+    "real",
+]
+
+EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+#: Errors of a computation (root finding, continuation, linear algebra): exit code 1.
+COMPUTATION_ERRORS = (ArithmeticError, RuntimeError, np.linalg.LinAlgError)
+FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+class UsageError(Exception):
+    """Bad input from the command line: message printed, exit code 2."""
+
+
+def add_command(subparsers, name: str, help: str, description: str,
+                examples: str) -> argparse.ArgumentParser:
+    """Register one ``groove`` command whose help ends with its examples; returns its parser."""
+    return subparsers.add_parser(name, help=help, description=description, epilog=examples,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+
+
+def friction(text: str) -> float:
+    """Argument type of a friction coefficient ``k``: a finite number > 0."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"friction coefficient k = {text!r} is not a number; k must be finite and > 0"
+        ) from None
+    try:
+        return check_friction(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def real(name: str, allowed: str = "a finite number"):
+    """Argument type of a finite real number; messages name it ``name`` with range ``allowed``."""
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is not a number; allowed range: {allowed}") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(
+                f"{name} = {text!r} is outside the allowed range: {allowed}")
+        return value
+
+    parse.__name__ = name
+    return parse
+
+
+def output_directory(text: str) -> Path:
+    """The ``--out`` directory (created later if needed).
+
+    Raises
+    ------
+    UsageError
+        If it exists and is not a directory.
+    """
+    out = Path(text)
+    if out.exists() and not out.is_dir():
+        raise UsageError(f"--out {out} exists and is not a directory")
+    return out
+
+
+def figure_target(text: str) -> tuple[Path, str]:
+    """A figure file to write and its format, read from its suffix.
+
+    Raises
+    ------
+    UsageError
+        If the suffix is not one of :data:`FIGURE_FORMATS` or the directory does not exist.
+    """
+    target = Path(text)
+    fmt = target.suffix.lstrip(".").lower()
+    if fmt not in FIGURE_FORMATS:
+        raise UsageError(f"output format {target.suffix or '(none)'!r} of {target} is not one "
+                         "of .png, .svg, .pdf")
+    if not target.parent.is_dir():
+        raise UsageError(f"directory {target.parent} of {target} does not exist")
+    return target, fmt

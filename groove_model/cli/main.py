@@ -1,0 +1,55 @@
+"""The ``groove`` command line: the parser with every command, and the entry point.
+
+Each command is one module of this package with ``add_parser(subparsers)`` and ``run(args)``;
+exit codes and argument types are in :mod:`groove_model.cli.common`.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+
+from . import audit, plot, reproduce, solve, trace
+from . import map as regime_map
+from .common import EXIT_FAILED, EXIT_USAGE, UsageError
+
+__all__ = ["build_parser", "main"]
+
+_EXAMPLES = """examples:
+  groove solve --gamma 0.6 --delta 0.2 -k 1
+  groove trace -k 1 -k 10 --out results/
+  groove plot results/boundaries_k1.csv -o k1.png
+  groove map -k 10 -o map_k10.png --svg
+  groove audit -k 1 10
+  groove reproduce                     # regenerate results/
+run 'groove COMMAND --help' for each command's options and examples"""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``groove`` argument parser with every subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="groove",
+        description="Regime boundaries of an elastic ball in a rigid V-groove "
+                    "(Halsey & Ertas, 'A Ball in a Groove').",
+        epilog=_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for command in (solve, trace, plot, regime_map, audit):
+        command.add_parser(sub)
+    reproduce.add_parser(sub, parser)
+    return parser
+
+
+def main(argv=None) -> int:
+    """Entry point of the ``groove`` console script; returns the exit code."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return args.run(args)
+    except UsageError as exc:
+        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
+    except OSError as exc:
+        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
+    return EXIT_FAILED  # pragma: no cover

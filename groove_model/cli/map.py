@@ -1,0 +1,102 @@
+"""``groove map``: the shaded regime map of the ``(gamma, delta)`` plane for one ``k``."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import sys
+
+from .common import (
+    COMPUTATION_ERRORS,
+    EXIT_FAILED,
+    EXIT_OK,
+    add_command,
+    figure_target,
+    friction,
+)
+
+__all__ = ["add_parser", "run"]
+
+log = logging.getLogger(__name__)
+
+_RESOLUTION_RANGE = (2, 20000)
+
+_EXAMPLES = """examples:
+  groove map -k 10 -o map_k10.png --svg        # PNG and SVG of the regime map for k = 10
+  groove map -k 1 -o map_k1.svg --deg          # SVG only, axes in degrees
+  groove map -k 2 -o fine.png --resolution 1200
+
+The map shades double rolling and rolling sliding, each clockwise or counter-clockwise, draws
+the axis segments delta = 0 (symmetric no-rotation below arctan k, double sliding above), and
+overlays the traced boundaries with their special points and the paper's seed points.
+"""
+
+
+def _resolution(text: str) -> int:
+    lo, hi = _RESOLUTION_RANGE
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"grid resolution N = {text!r} is not an integer; allowed range {lo} <= N <= {hi}"
+        ) from None
+    if not lo <= value <= hi:
+        raise argparse.ArgumentTypeError(
+            f"grid resolution N = {value} is outside the allowed range {lo} <= N <= {hi}")
+    return value
+
+
+def add_parser(subparsers):
+    """Register ``groove map``; returns its parser."""
+    p = add_command(
+        subparsers, "map", help="shade the regime map of the (gamma, delta) plane for one k",
+        description="Classify every point of 0 <= delta <= gamma <= pi/2 with the point solver "
+                    "(double rolling or rolling sliding, clockwise or counter-clockwise), shade "
+                    "the regions, overlay the traced boundaries, and write the figure. The "
+                    "suffix of -o sets the format (.png, .svg, .pdf).",
+        examples=_EXAMPLES)
+    p.add_argument("-k", required=True, type=friction, help="friction coefficient, > 0")
+    p.add_argument("-o", "--output", required=True, metavar="FIG.png",
+                   help="figure file; its suffix (.png, .svg, .pdf) sets the format")
+    p.add_argument("--svg", action="store_true",
+                   help="also write an SVG beside the figure (same name, suffix .svg)")
+    p.add_argument("--resolution", type=_resolution, default=600, metavar="N",
+                   help=f"cells along each axis of [0, pi/2], {_RESOLUTION_RANGE[0]} <= N <= "
+                        f"{_RESOLUTION_RANGE[1]} (default 600)")
+    p.add_argument("--deg", action="store_true", help="axes in degrees")
+    p.add_argument("--no-boundaries", action="store_true",
+                   help="shade the regions only (no tracing)")
+    p.set_defaults(run=run)
+    return p
+
+
+def run(args) -> int:
+    """Trace (unless ``--no-boundaries``), draw and write; 1 if a computation failed."""
+    # Imported here, not at the top: the tracer and the map load the engine, scipy and
+    # matplotlib, which `groove --help` and `groove solve` should not wait for.
+    from ..plots.regime_map import save_regime_map
+    from ..tracer import trace_boundaries
+
+    target, fmt = figure_target(args.output)
+    formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))
+    boundary_set = None
+    try:
+        if not args.no_boundaries:
+            log.info("tracing the boundaries for k = %g", args.k)
+            boundary_set = trace_boundaries(args.k)
+            if not boundary_set.ok:
+                for failure in boundary_set.failures:
+                    print(f"groove map: error: k = {args.k:g}: {failure}", file=sys.stderr)
+                print("groove map: nothing written: a boundary failed (see above)",
+                      file=sys.stderr)
+                return EXIT_FAILED
+        paths = save_regime_map(args.k, target, n=args.resolution, degrees=args.deg,
+                                formats=formats, boundary_set=boundary_set,
+                                boundaries=not args.no_boundaries)
+    except COMPUTATION_ERRORS as exc:
+        print(f"groove map: error: computation failed for k = {args.k:g}: "
+              f"{type(exc).__name__}: {exc}", file=sys.stderr)
+        return EXIT_FAILED
+    for path in paths:
+        print(f"figure: {path}")
+    return EXIT_OK

@@ -1,0 +1,47 @@
+"""``groove plot``: an overlay drawn from boundaries CSV files written by ``groove trace``."""
+
+from __future__ import annotations
+
+from .common import EXIT_OK, UsageError, add_command, figure_target
+
+__all__ = ["add_parser", "run"]
+
+_EXAMPLES = """examples:
+  groove plot results/boundaries_k1.csv results/boundaries_k10.csv -o overlay.png
+  groove plot out/boundaries_k2.csv -o k2.svg --deg
+"""
+
+
+def add_parser(subparsers):
+    """Register ``groove plot``; returns its parser."""
+    p = add_command(
+        subparsers, "plot", help="draw an overlay from existing boundaries CSV files",
+        description="Draw the boundaries stored in boundaries_k*.csv files onto one overlay.",
+        examples=_EXAMPLES)
+    p.add_argument("files", nargs="+", metavar="FILE.csv", help="boundaries CSV files")
+    p.add_argument("-o", "--output", required=True, metavar="FIG.png",
+                   help="figure file; its suffix (.png, .svg, .pdf) sets the format")
+    p.add_argument("--deg", action="store_true", help="axes in degrees")
+    p.set_defaults(run=run)
+    return p
+
+
+def run(args) -> int:
+    """Read every file, draw, write; :class:`UsageError` for an unreadable file or bad target."""
+    # Imported here, not at the top: reading CSV and drawing load pandas and matplotlib, which
+    # `groove --help` and `groove solve` should not wait for.
+    from ..io.export import read_boundaries_csv
+    from ..plots.overlay import save_overlay
+
+    frames = []
+    for name in args.files:
+        try:
+            frames.append(read_boundaries_csv(name))
+        except OSError as exc:
+            raise UsageError(f"cannot read {name}: {exc.strerror or exc}") from None
+        except ValueError as exc:
+            raise UsageError(str(exc)) from None
+    target, fmt = figure_target(args.output)
+    for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):
+        print(f"figure: {path}")
+    return EXIT_OK

@@ -1,0 +1,109 @@
+"""``groove solve``: the equilibrium at one point ``(gamma, delta)``, in words or as JSON."""
+
+from __future__ import annotations
+
+import json
+import math
+
+from ..model.parameters import check_domain
+from .common import EXIT_OK, UsageError, add_command, friction, real
+
+__all__ = ["add_parser", "run"]
+
+_EXAMPLES = """examples:
+  groove solve --gamma 0.6 --delta 0.2 -k 1
+  groove solve --gamma 40 --delta 10 -k 10 --deg --json
+  groove solve --gamma 0.6 --delta 0.2 -k 1 --radius 0.01 --young 2e11 --poisson 0.3 --mass 0.033
+"""
+
+_KEYS = ("regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
+         "T_over_N_L", "T_over_N_R", "d_L", "rotation")
+
+
+def add_parser(subparsers):
+    """Register ``groove solve``; returns its parser."""
+    p = add_command(
+        subparsers, "solve", help="equilibrium of the ball at one point (gamma, delta)",
+        description="Print the equilibrium the paper predicts at one groove geometry: regime, "
+                    "loading direction beta_L, beta_R, rolling upsilon, force ratios, slip, "
+                    "rotation sense. Angles in radians unless --deg.",
+        examples=_EXAMPLES)
+    p.add_argument("--gamma", required=True,
+                   type=real("gamma", "0 <= gamma <= pi/2 (90 with --deg)"),
+                   help="half-sum of the wall angles, 0 <= gamma <= pi/2")
+    p.add_argument("--delta", required=True,
+                   type=real("delta", "0 <= delta <= gamma"),
+                   help="half-difference of the wall angles, 0 <= delta <= gamma")
+    p.add_argument("-k", required=True, type=friction, help="friction coefficient, > 0")
+    p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object (angles in radians)")
+    dim = p.add_argument_group("dimensional results (all four needed)")
+    dim.add_argument("--radius", type=real("radius R"), help="ball radius R in m")
+    dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
+    dim.add_argument("--poisson", type=real("Poisson ratio nu"), help="Poisson ratio nu")
+    dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
+    dim.add_argument("--g", type=real("g"), default=9.81, help="gravity in m/s^2 (default 9.81)")
+    p.set_defaults(run=run)
+    return p
+
+
+def _json_number(value):
+    return value if math.isfinite(value) else None
+
+
+def run(args) -> int:
+    """Solve and print; exit code 0, or :class:`UsageError` for a point outside the domain."""
+    # Imported here, not at the top: the solver loads scipy.optimize, which `groove --help`
+    # and the other commands' start-up should not wait for.
+    from ..model.equilibrium import solve_equilibrium
+
+    gamma, delta = (math.radians(args.gamma), math.radians(args.delta)) if args.deg else (
+        args.gamma, args.delta)
+    try:
+        check_domain(gamma, delta)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    eq = solve_equilibrium(gamma, delta, args.k)
+    dimensional = _dimensional(args, eq)
+    if args.json:
+        out = {key: (_json_number(v) if isinstance(v, float) else v)
+               for key, v in ((key, getattr(eq, key)) for key in _KEYS)}
+        if dimensional is not None:
+            out["dimensional"] = {key: _json_number(v) for key, v in dimensional.to_dict().items()}
+        print(json.dumps(out))
+        return EXIT_OK
+    _print_state(args.k, eq, dimensional)
+    return EXIT_OK
+
+
+def _dimensional(args, eq):
+    """The SI state when all four material options are given, None when none is."""
+    # Imported here for the same reason as the solver in `run`.
+    from ..model.dimensional import dimensional_state
+
+    dims = [args.radius, args.young, args.poisson, args.mass]
+    if all(v is None for v in dims):
+        return None
+    if any(v is None for v in dims):
+        raise UsageError("dimensional results need all of --radius, --young, --poisson, --mass")
+    try:
+        return dimensional_state(eq, args.radius, args.young, args.poisson, args.mass, args.g)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def _print_state(k: float, eq, dimensional) -> None:
+    print(f"k = {k:g}, gamma = {eq.gamma:.10g} rad ({math.degrees(eq.gamma):.6g} deg), "
+          f"delta = {eq.delta:.10g} rad ({math.degrees(eq.delta):.6g} deg)")
+    print(f"  regime     {eq.regime.replace('_', ' ')}, rotation {eq.rotation}")
+    print(f"  theta_L    {eq.theta_L:.10g}   theta_R {eq.theta_R:.10g}")
+    print(f"  beta_L     {eq.beta_L:.10g}   beta_R  {eq.beta_R:.10g}")
+    print(f"  upsilon    {eq.upsilon:.10g}")
+    print(f"  T/N_L      {eq.T_over_N_L:.10g}   T/N_R   {eq.T_over_N_R:.10g}   (k = {k:g})")
+    print(f"  d_L/Z      {eq.d_L:.10g}   d_R/Z   {eq.d_R:.10g}")
+    if dimensional is not None:
+        d = dimensional
+        print(f"  Z          {d.Z:.6g} m")
+        print(f"  N_L, N_R   {d.N_L:.6g} N, {d.N_R:.6g} N;  T {d.T:.6g} N")
+        print(f"  a_L, a_R   {d.a_L:.6g} m, {d.a_R:.6g} m (contact radii)")

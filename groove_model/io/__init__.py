@@ -1,0 +1,1 @@
+"""Files: boundaries as CSV, written atomically."""

@@ -1,0 +1,1 @@
+"""Figures: the boundary overlay and the regime map (matplotlib)."""
