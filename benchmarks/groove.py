@@ -73,7 +73,7 @@ def _params(k):
 
 
 def _ours(problem: str, ks, repeats: int) -> Record:
-    from groove_model.tracer import trace_boundaries
+    from groove_model import trace_boundaries
 
     def run():
         return [trace_boundaries(k) for k in ks]
@@ -113,7 +113,7 @@ def _reference(ks, samples: int = 128):
     own dense-output predictor, error ``O(h^4)`` ~ 1e-8 for its steps <= 0.05), so the
     polyline resolves distances down to ~1e-8.
     """
-    from groove_model.tracer import trace_boundaries
+    from groove_model import trace_boundaries
 
     u = np.linspace(0.0, 1.0, samples, endpoint=False)[:, None, None]
     basis = (2 * u**3 - 3 * u**2 + 1, u**3 - 2 * u**2 + u, -2 * u**3 + 3 * u**2, u**3 - u**2)

@@ -27,8 +27,8 @@ Layout
 ``model``
     parameters, equilibria (:func:`solve_equilibrium`), boundary equations, SI units, lines
     by root finding.
-``tracer``
-    every boundary for one ``k`` (:func:`groove_model.tracer.trace_boundaries`).
+``tracing``
+    every boundary for one ``k`` (:func:`trace_boundaries`), the topology it must have.
 ``analysis``
     regime classification and the audit of the paper's claims.
 ``io``, ``plots``, ``cli``
@@ -54,6 +54,8 @@ _SOURCES = {
     "dimensional_state": "model.dimensional",
     "regime_validity": "model.equilibrium",
     "solve_equilibrium": "model.equilibrium",
+    "trace_boundaries": "tracing.tracer",
+    "BoundarySet": "tracing.curves",
 }
 
 __all__ = sorted(_SOURCES)

@@ -222,7 +222,7 @@ def test_tracer_cross_check_agrees_with_root_finding():
 
 
 def test_a_failing_tracer_is_reported_not_fatal(monkeypatch):
-    from groove_model import tracer
+    from groove_model import tracing as tracer
 
     def broken(*args, **kwargs):
         raise RuntimeError("engine exploded")
@@ -317,7 +317,7 @@ def test_map_cli_writes_png_and_svg(tmp_path, capsys):
 
 
 def test_computation_failures_exit_1(tmp_path, monkeypatch, capsys):
-    from groove_model import tracer
+    from groove_model import tracing as tracer
 
     def broken(*args, **kwargs):
         raise ArithmeticError("root finding failed for 3 brackets")

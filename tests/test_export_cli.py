@@ -7,12 +7,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from groove_model import tracer as tracer_module
+from groove_model import tracing as tracer_module
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.cli.main import main
 from groove_model.io.export import atomic_write, read_boundaries_csv, write_boundary_set
 from groove_model.model.parameters import Parameters
-from groove_model.tracer import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, trace_boundaries
+from groove_model.tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, trace_boundaries
 
 RESULTS = Path(__file__).resolve().parents[1] / "results"
 

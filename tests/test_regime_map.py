@@ -27,7 +27,7 @@ from groove_model.plots.regime_map import (
     save_regime_map,
     seed_points,
 )
-from groove_model.tracer import trace_boundaries
+from groove_model.tracing import trace_boundaries
 
 KS = [0.3, 1.0, 1.2, 2.0, 10.0, 100.0]
 SQRT2 = math.sqrt(2.0)

@@ -25,7 +25,7 @@ import pytest
 
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.model.parameters import Parameters
-from groove_model.tracer import trace_boundaries
+from groove_model.tracing import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)
 K_FOLD, K_BRANCH = 1.0 / SQRT2, SQRT2

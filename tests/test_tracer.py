@@ -8,7 +8,7 @@ import pytest
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.model.equilibrium import solve_equilibrium
 from groove_model.model.parameters import Parameters
-from groove_model.tracer import trace_boundaries
+from groove_model.tracing import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)
 CORNER = (math.pi / 4, math.pi / 4)

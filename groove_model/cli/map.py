@@ -75,7 +75,7 @@ def run(args) -> int:
     # Imported here, not at the top: the tracer and the map load the engine, scipy and
     # matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..plots.regime_map import save_regime_map
-    from ..tracer import trace_boundaries
+    from ..tracing import trace_boundaries
 
     target, fmt = figure_target(args.output)
     formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))

@@ -50,7 +50,7 @@ def run(args) -> int:
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.export import write_boundary_set
     from ..plots.overlay import save_overlay
-    from ..tracer import trace_boundaries
+    from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
     sets = []

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.boundaries import BOUNDARY_NAMES
-from ..tracer import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
+from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
 
 __all__ = ["atomic_write", "boundary_file_names", "read_boundaries_csv", "write_boundary_set"]
 

@@ -1,6 +1,6 @@
 r"""The boundary lines by bracketed root finding with the point solver, one row or column at a time.
 
-Where the tracer (:func:`groove_model.tracer.trace_boundaries`) follows each boundary as one
+Where the tracer (:func:`groove_model.tracing.trace_boundaries`) follows each boundary as one
 curve, these functions find its points on given rows ``delta`` or columns ``gamma`` from the
 regime states of :mod:`groove_model.model.equilibrium`, each root bracketed by a sign change
 that the paper's equations guarantee. They are independent of the tracer, which is why the

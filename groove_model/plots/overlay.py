@@ -16,7 +16,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..io.export import atomic_write
-from ..tracer import BoundarySet
+from ..tracing import BoundarySet
 
 __all__ = ["LINESTYLES", "STYLE_LABELS", "draw_boundaries", "save_overlay"]
 

@@ -3,7 +3,7 @@ r"""The regime map: the regions of the ``(gamma, delta)`` plane shaded, the boun
 The categories come from :mod:`groove_model.analysis.regimes`: four regions (double rolling and
 rolling sliding, each clockwise or counter-clockwise) shaded in Paul Tol's colours, and the two
 segments of the axis ``delta = 0`` drawn as thick lines. The boundaries traced by
-:func:`groove_model.tracer.trace_boundaries` are drawn on top by
+:func:`groove_model.tracing.trace_boundaries` are drawn on top by
 :func:`groove_model.plots.overlay.draw_boundaries`, and the seed points the paper names are
 labelled.
 """
@@ -25,7 +25,7 @@ from ..analysis.regimes import CATEGORIES, CATEGORY_CODE, OUTSIDE, check_resolut
 from ..io.export import atomic_write
 from ..model.lines import dr_limit_no_roll_point
 from ..model.parameters import Parameters
-from ..tracer import trace_boundaries
+from ..tracing import trace_boundaries
 from .overlay import STYLE_LABELS, draw_boundaries
 
 __all__ = [
@@ -133,7 +133,7 @@ def draw_regime_map(ax, k, n: int = 600, boundaries: bool = True, degrees: bool 
         Overlay the traced boundaries and their special points.
     degrees : bool
         Axes in degrees instead of radians.
-    boundary_set : groove_model.tracer.BoundarySet, optional
+    boundary_set : groove_model.tracing.BoundarySet, optional
         Boundaries already traced for this ``k``; traced here when omitted.
     legend : bool
         Add a legend naming each regime in words, the line styles and the point markers.
@@ -276,7 +276,7 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
         Axes in degrees.
     formats : sequence of str
         Any of ``"png"``, ``"svg"``, ``"pdf"``.
-    boundary_set : groove_model.tracer.BoundarySet, optional
+    boundary_set : groove_model.tracing.BoundarySet, optional
         Boundaries already traced for this ``k``; traced here when omitted.
     boundaries : bool
         Overlay the boundaries (False: the shaded regions and seed points only).

@@ -10,7 +10,7 @@ The verdicts are computed, never written in: each check evaluates the point solv
 (:mod:`groove_model.model.equilibrium`) on grids and with bracketed root finding
 (``scipy.optimize.elementwise.find_root``, Chandrupatla's method, and ``brentq``) and compares
 with the statement, for every friction coefficient ``k`` of the audit. Where the tracer
-(:func:`groove_model.tracer.trace_boundaries`) runs, its curves and special points are reported
+(:func:`groove_model.tracing.trace_boundaries`) runs, its curves and special points are reported
 beside the root-finding numbers as an independent cross-check; the verdicts do not depend on it.
 
 Verdicts

@@ -141,7 +141,7 @@ class Context:
             try:
                 # Imported here: the tracer brings the continuation engine and pandas, which
                 # only this optional cross-check needs.
-                from ...tracer import trace_boundaries
+                from ...tracing import trace_boundaries
 
                 bs = trace_boundaries(k, keep_unphysical=True)
             except (ArithmeticError, RuntimeError, ValueError, np.linalg.LinAlgError) as exc:

@@ -50,8 +50,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .model.boundaries import BoundarySystem, dr_no_roll_branch_point, limit_seed
-from .model.parameters import Compliance, Parameters
+from ..model.boundaries import BoundarySystem, dr_no_roll_branch_point, limit_seed
+from ..model.parameters import Compliance, Parameters
 
 __all__ = ["THRESHOLD_BAND", "CurveTopology", "Thresholds", "expected_topology", "thresholds"]
 

@@ -1,0 +1,324 @@
+"""Trace every regime boundary for a friction coefficient ``k`` with the continuation engine.
+
+Which curve starts and ends where follows from ``k`` (the table in :mod:`groove_model.topology`,
+with its thresholds ``k_fold = c/sqrt 2`` and ``k_branch = c sqrt 2`` computed from the
+equations):
+
+* ``dr_limit`` and ``rs_limit`` (one curve seen from the two regimes) start at
+  ``(arctan(k/c), 0)`` and run towards the origin, which they approach tangentially to
+  ``delta = gamma`` with ``beta_L ~ 2 gamma^2 / k``; the origin is a singular corner (a flat
+  groove), so they stop at ``gamma = gamma_min``. On the way ``delta`` has one maximum (a fold in
+  ``delta``), and for ``k > k_branch`` ``upsilon`` vanishes once: the junction with the
+  ``upsilon = 0`` lines.
+* ``dr_no_roll`` leaves the symmetric family ``delta = 0`` at the branch point
+  ``(arctan sqrt 2, 0)``; its physical part (``T/N_L <= k``) ends at the junction, so it has
+  one only for ``k > k_branch``. It is traced in its deflated form (the no-roll torque divided
+  by ``beta_L - beta_R``, :mod:`groove_model.boundaries`), whose zero set is this branch alone
+  and passes the branch point as a regular point: points next to the branch point are then as
+  accurate as anywhere (with the paper's form, which also vanishes on the symmetric family,
+  a point at distance ``d`` from the branch point carries errors of order ``eps / d``, so the
+  junction of a ``k`` within ``1e-7`` of ``k_branch`` would be off by ``1e-9``).
+* ``rs_no_roll`` starts at the junction when ``k > k_branch``, at ``(arctan(k/c), 0)``
+  otherwise, and ends at the corner ``(pi/4, pi/4)``; for ``k > k_fold`` it turns once in
+  ``gamma`` (for large ``k`` ever closer to the corner, at ``beta_L`` of order ``1/k^2``).
+
+The curves are traced in the chart ``y = (gamma / g, delta / g, w, upsilon)``, ``beta_L = w^2``,
+where every residual is analytic and the corner ``beta_L = 0`` is a regular point located as the
+event ``w = 0`` (see :mod:`groove_model.boundaries`); ``g = min(1, arctan(k/c))`` for the limit
+curves, whose extent in ``gamma`` and ``delta`` is ``arctan(k/c)``, and 1 for the others. Results
+are reported in ``x = (gamma, delta, beta_L, upsilon)``. Each curve is cut to its physical part
+(its regime valid) at validity events the engine locates exactly; ``keep_unphysical=True``
+keeps the rest, flagged ``physical = False``.
+
+Nothing is reported as traced that has not been checked: the engine brackets every zero of an
+event and of the tangent's ``gamma`` and ``delta`` components inside each step (pairs of zeros
+included) and fails loudly where it cannot locate one; every curve is then compared with the
+expected topology for its ``k`` (starts, ends, junctions, folds), and a curve that differs is a
+failure with a message saying what differs.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+from scipy.linalg.lapack import dgesv
+
+from continuation import Curve, Event, Options, SpecialKind
+
+from ..model.boundaries import (
+    BOUNDARY_NAMES,
+    BoundarySystem,
+    dr_no_roll_branch_point,
+    limit_seed,
+)
+from ..model.parameters import Parameters
+from .assembly import (
+    Role,
+    Tagged,
+    assemble,
+    domain_events,
+    trace_curve,
+    validity_events,
+)
+from .curves import BoundaryCurve, BoundarySet, PointKind, TraceError, Where
+from .topology import CurveTopology, expected_topology
+
+__all__ = ["DEFAULT_OPTIONS", "GAMMA_MIN", "trace_boundaries"]
+
+log = logging.getLogger(__name__)
+
+
+#: Engine settings for the boundaries: residuals to 1e-12 (so that rs_limit and dr_limit, two
+#: systems for one curve, agree to about 1e-12); CSV rows recomputed from their 17-digit columns
+#: satisfy the equations to 1e-10 (rounding of the columns is amplified where |J| ~ 2e4); steps
+#: small enough for smooth plots; folds in gamma and in delta located.
+DEFAULT_OPTIONS = Options(tol=1e-12, ds=0.02, ds_min=1e-12, ds_max=0.05, max_steps=5000,
+                          fold_coordinates=(0, 1), detect_branch_points=False,
+                          detect_closed=False)
+
+
+GAMMA_MIN = 1e-3
+
+
+#: largest accepted distance between rs_limit and dr_limit, which are one curve
+LIMIT_TOLERANCE = 1e-10
+
+
+def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) -> float:
+    """Largest distance from a point of ``rs_limit`` to the curve ``dr_limit``.
+
+    Each point is projected onto ``dr_limit`` by Gauss-Newton with the minimum-norm step
+    ``dx = -J^T (J J^T)^{-1} H`` in the smooth chart. The first step is the distance to first
+    order, with an error of order ``|dx|^2`` (times the curvature of ``H = 0``): once it is
+    below ``1e-8`` that error is below rounding and the iteration stops.
+    """
+    system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
+    worst = 0.0
+    for x in rs.x:
+        y = system.from_x(x)
+        for _ in range(20):
+            H, J = system.residual_and_jacobian(y)
+            _, _, multipliers, info = dgesv(J @ J.T, H)
+            if info != 0 or not np.all(np.isfinite(multipliers)):
+                return math.nan  # rank-deficient: no distance is claimed
+            step = J.T @ multipliers
+            y = y - step
+            if float(np.linalg.norm(step)) <= 1e-8 * (1.0 + float(np.max(np.abs(y)))):
+                break
+        else:
+            return math.nan  # not converged: no distance is claimed
+        worst = max(worst, float(np.linalg.norm(system.to_x(y) - x)))
+    return worst
+
+
+def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[str]:
+    """How a traced curve's physical part differs from its expected topology (empty if not)."""
+    rows = np.flatnonzero(curve.physical)
+    if expected.present is False:
+        return [f"has a physical part of {len(rows)} points, expected none"] if len(rows) > 1 \
+            else []
+    problems = []
+    if expected.start is not None and curve.start.value != expected.start:
+        problems.append(f"starts at {curve.start}, expected {expected.start}")
+    if expected.end is not None and curve.end.value != expected.end:
+        where = ""
+        if len(rows):
+            last = curve.x[rows[-1]]
+            where = f" (gamma, delta) = ({last[0]:.9g}, {last[1]:.9g})"
+        problems.append(f"ends at {curve.end}{where}, expected {expected.end}")
+    first, last = (int(rows[0]), int(rows[-1])) if len(rows) else (0, -1)
+    for kind, count in ((PointKind.JUNCTION, expected.junctions),
+                        (PointKind.FOLD_GAMMA, expected.folds_gamma),
+                        (PointKind.FOLD_DELTA, expected.folds_delta)):
+        inner = [p for p in curve.special(kind)
+                 if first < p.index < last and curve.physical[p.index]]
+        if count is not None and len(inner) != count:
+            problems.append(f"has {len(inner)} {kind.value} point(s) inside, expected {count}")
+    return problems
+
+
+def _check(curves: dict, params: Parameters, notes: list) -> dict:
+    """Compare each curve with the expected topology; a differing curve becomes a failure."""
+    expected = expected_topology(params)
+    checked = {}
+    for name, curve in curves.items():
+        problems = _topology_problems(curve, expected[name]) if curve.ok else []
+        if problems:
+            curve = curve.failed(f"the traced curve differs from the expected topology for "
+                                 f"k = {params.k!r}: it " + "; it ".join(problems))
+        checked[name] = curve
+    if expected["dr_no_roll"].present and "dr_no_roll" not in checked:
+        notes.append(f"dr_no_roll is expected for k = {params.k!r} but was not traced")
+    return checked
+
+
+#: largest distance between the junction located on dr_limit and the one on dr_no_roll
+JUNCTION_TOLERANCE = 1e-5
+
+
+def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
+                    junction) -> tuple[tuple, str]:
+    """The junction mark of the limit curve, at the junction found on ``dr_no_roll``.
+
+    ``upsilon = 0`` on the limit curve is located as an event, but next to ``k_branch`` it is
+    nearly tangent to the curve (``upsilon`` has a double zero at the seed when
+    ``k = k_branch``), so that point is only accurate to ``event_tol / |k - k_branch|``; the
+    same junction is where ``dr_no_roll`` reaches ``T/N_L = k``, which it crosses transversally
+    for every ``k``. The event's point is replaced by that one; the two must agree to
+    :data:`JUNCTION_TOLERANCE`. Returns the marks for :func:`assemble` and a problem, if any.
+    """
+    crossings = [p for p in limit.special_points if p.kind is SpecialKind.EVENT
+                 and tagged[p.event].role is Role.NO_ROLL and p.index > 0]
+    if not crossings or junction is None:
+        return (), ""
+    index = crossings[0].index
+    distance = float(np.max(np.abs(system.to_x(limit.x[index]) - junction)))
+    problem = "" if distance <= JUNCTION_TOLERANCE else (
+        f"upsilon = 0 on dr_limit at {tuple(system.to_x(limit.x[index]))} is {distance:.3g} from "
+        f"the end of dr_no_roll at {tuple(junction)}, where T/N_L = k: the junction is not "
+        "consistent")
+    return ((index, "meets dr_no_roll and rs_no_roll (upsilon = 0)", junction),), problem
+
+
+#: the direction every boundary starts in: into delta > 0
+_UP = np.array([0.0, 1.0, 0.0, 0.0])
+
+
+class _Job:
+    """The settings of one call of :func:`trace_boundaries`, and its three traces."""
+
+    def __init__(self, params: Parameters, options: Options, gamma_min: float,
+                 keep_unphysical: bool) -> None:
+        self.params = params
+        self.options = options
+        self.gamma_min = gamma_min
+        self.keep_unphysical = keep_unphysical
+        self.seed = limit_seed(params)
+
+    def _events(self, system: BoundarySystem) -> list[Tagged]:
+        return [*domain_events(system, self.gamma_min), *validity_events(system)]
+
+    def dr_no_roll(self) -> tuple[dict, list, np.ndarray | None]:
+        """``dr_no_roll`` from the branch point ``(arctan sqrt 2, 0)``, and the junction.
+
+        In its deflated form the branch point is a regular point of ``dr_no_roll`` alone. Its
+        physical part ends where ``T/N_L`` reaches ``k``, the junction, which it crosses
+        transversally for every ``k``. Returns the curve (if it has a physical part), notes and
+        the junction (``None`` for ``k <= k_branch``).
+        """
+        params = self.params
+        system = BoundarySystem("dr_no_roll", params, "sqrt_beta_L", conditioned=True)
+        tagged = self._events(system)
+        engine = trace_curve(system, system.from_x(dr_no_roll_branch_point()), _UP,
+                             self.options, tagged)
+        curve = assemble("dr_no_roll", system, engine, tagged, self.keep_unphysical,
+                         Where.BRANCH_POINT, "branch point (arctan sqrt 2, 0) off the "
+                         "symmetric family; gamma is stationary there (symmetry delta -> -delta)")
+        junction = None
+        if curve.ok and curve.end is Where.JUNCTION:
+            junction = curve.x[np.flatnonzero(curve.physical)[-1]].copy()
+        if len(curve.x) >= 2 or not curve.ok:
+            return {"dr_no_roll": curve}, [], junction
+        if len(curve.x) == 1:
+            return {}, [f"dr_no_roll reduces to its branch point (arctan sqrt 2, 0) for "
+                        f"k = {params.k!r}: T/N = c sqrt 2 = k there and > k beyond"], junction
+        return {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "
+                    "T/N_L > k all along it"], junction
+
+    def limit(self, junction) -> dict:
+        """``dr_limit`` and ``rs_limit`` from ``(arctan(k/c), 0)`` into ``delta > 0``.
+
+        One trace in the conditioned form of the limit curve, reported as ``dr_limit`` (with
+        the junction where ``upsilon = 0``) and as ``rs_limit``; each is then checked against
+        its own equations in the paper's form.
+        """
+        params, scale = self.params, min(1.0, self.params.gamma_limit)
+        system = BoundarySystem("dr_limit", params, "sqrt_beta_L", scale, conditioned=True)
+        tagged = [*self._events(system),
+                  Tagged(Event("upsilon = 0", lambda y: y[3],
+                               gradient=lambda y: np.array([0.0, 0.0, 0.0, 1.0])),
+                         Role.NO_ROLL)]
+        engine = trace_curve(system, system.from_x(self.seed), _UP, self.options, tagged)
+        note = "seed (arctan(k/c), 0): T/N = c tan gamma = k on delta = 0"
+        marks, problem = _limit_junction(system, engine, tagged, junction)
+        dr = assemble("dr_limit", system, engine, tagged, self.keep_unphysical, Where.SEED,
+                      note, marks)
+        rs_system = BoundarySystem("rs_limit", params, "sqrt_beta_L", scale, conditioned=True)
+        rs = assemble("rs_limit", rs_system, engine, tagged, self.keep_unphysical, Where.SEED,
+                      note)
+        return {"dr_limit": dr.failed(problem) if problem else dr, "rs_limit": rs}
+
+    def rs_no_roll(self, junction) -> BoundaryCurve:
+        """``rs_no_roll`` from the junction (``k > k_branch``) or the seed to the corner.
+
+        From the seed through the junction (``d_L < 0`` between them) to the corner, ``delta``
+        increases: the direction is taken from ``delta``, not from ``d_L``, which barely
+        changes at the junction of a ``k`` near ``k_branch``.
+        """
+        system = BoundarySystem("rs_no_roll", self.params, "sqrt_beta_L")
+        tagged = self._events(system)
+        if junction is not None:
+            start, where, note = (system.from_x(junction), Where.JUNCTION,
+                                  "junction with dr_limit where upsilon = 0")
+        else:
+            start, where, note = system.from_x(self.seed), Where.SEED, "seed (arctan(k/c), 0)"
+        engine = trace_curve(system, start, _UP, self.options, tagged)
+        return assemble("rs_no_roll", system, engine, tagged, self.keep_unphysical, where, note)
+
+
+def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | None = None,
+                     gamma_min: float | None = None,
+                     raise_on_failure: bool = False) -> BoundarySet:
+    """Trace ``dr_limit``, ``rs_limit``, ``dr_no_roll`` and ``rs_no_roll`` for friction ``k``.
+
+    Parameters
+    ----------
+    k : float or Parameters
+        Friction coefficient, finite and > 0.
+    keep_unphysical : bool
+        Keep the parts of each boundary where its regime is not valid (flagged).
+    options : continuation.Options, optional
+        Engine settings; the default (:data:`DEFAULT_OPTIONS`) resolves the curves for plotting
+        with residuals <= 1e-12. Folds are located in the coordinates ``options.fold_coordinates``
+        (0 = gamma, 1 = delta); the topology check expects both.
+    gamma_min : float, optional
+        Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
+        ``min(1e-3, arctan(k/c) / 100)``.
+    raise_on_failure : bool
+        Raise :class:`TraceError` (carrying everything traced) if any boundary failed.
+
+    Returns
+    -------
+    BoundarySet
+        ``ok`` only if every boundary was traced to its expected end with its expected
+        junctions and folds (:func:`groove_model.topology.expected_topology`).
+    """
+    params = Parameters.coerce(k)
+    options = options or DEFAULT_OPTIONS
+    if gamma_min is None:
+        gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
+    if not (0.0 < gamma_min < params.gamma_limit):
+        raise ValueError(f"gamma_min = {gamma_min!r} is outside the allowed range "
+                         f"0 < gamma_min < arctan(k/c) = {params.gamma_limit!r}")
+    job = _Job(params, options, gamma_min, keep_unphysical)
+    curves, notes, junction = job.dr_no_roll()
+    curves.update(job.limit(junction))
+    curves["rs_no_roll"] = job.rs_no_roll(junction)
+
+    curves = _check(curves, params, notes)
+    distance = (_limit_distance(curves["dr_limit"], curves["rs_limit"], params)
+                if curves["dr_limit"].ok and curves["rs_limit"].ok else math.nan)
+    if curves["rs_limit"].ok and not distance <= LIMIT_TOLERANCE:
+        curves["rs_limit"] = curves["rs_limit"].failed(
+            f"rs_limit is {distance!r} from dr_limit, more than {LIMIT_TOLERANCE:g}: the two "
+            "systems of the one limit curve disagree")
+    order = {name: i for i, name in enumerate(BOUNDARY_NAMES)}
+    result = BoundarySet(k=params.k,
+                         curves=dict(sorted(curves.items(), key=lambda kv: order[kv[0]])),
+                         limit_distance=distance, notes=tuple(notes), params=params)
+    if raise_on_failure and not result.ok:
+        raise TraceError(f"k = {params.k!r}: " + "; ".join(result.failures), result)
+    return result
+
