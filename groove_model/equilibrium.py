@@ -171,7 +171,9 @@ def _walls(gamma, delta):
     cos_g = np.where(gamma >= HALF_PI, 0.0, np.cos(gamma))
     cos_d = np.where(delta >= HALF_PI, 0.0, np.cos(delta))
     sin_tL = sin_g * cos_d + cos_g * sin_d
-    sin_tR = np.sin(gamma - delta)  # gamma - delta is exact when delta >= gamma/2 (Sterbenz)
+    # gamma - delta is exact when delta >= gamma/2 (Sterbenz); at gamma = pi/2 the float
+    # gamma - delta would be off by pi/2 - HALF_PI = 6e-17, so use sin(pi/2 - delta) = cos delta.
+    sin_tR = np.where(gamma >= HALF_PI, cos_d, np.sin(gamma - delta))
     positive = sin_tL > 0.0  # false only at the origin and at theta_L = pi, theta_R = 0
     share = _quotient(sin_d, sin_tL, positive)
     return dict(sin_g=sin_g, cos_g=cos_g, tan_g=_quotient(sin_g, cos_g, cos_g > 0.0),
