@@ -91,9 +91,13 @@ class Equilibrium:
     d_L, d_R : float
         Slip of each contact down its wall, per ``Z`` (``>= 0``).
     T_over_N_L, T_over_N_R, N_L_over_N_R : float
-        Force ratios (``inf`` where a normal force vanishes on the domain edge ``delta = gamma``).
+        Force ratios (``T/N_L = inf`` where ``N_L`` vanishes on the domain edge
+        ``delta = gamma``). ``N_L/N_R`` is computed from the kinematics, not from ``n_L, n_R``,
+        so it stays exact where both scaled forces vanish (closed groove, its limit value) or
+        underflow (near the origin).
     n_L, n_R, t : float
-        Scaled forces ``N_L, N_R, T`` divided by ``C Z^(3/2)``.
+        Scaled forces ``N_L, N_R, T`` divided by ``C Z^(3/2)``; of order ``gamma^(3/2)`` near
+        the origin, so subnormal or 0 for ``gamma`` below about ``1e-205`` (their exact values).
     """
 
     regime: object
