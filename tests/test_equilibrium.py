@@ -117,6 +117,20 @@ def test_double_rolling_equation_is_increasing_and_bracketed():
                     assert values[0] < 0.0 <= values[-1], (gamma, delta, upper)
 
 
+def test_arrays_give_the_pointwise_results():
+    """One vectorised call (both half-brackets, every regime, all scales) equals point calls."""
+    rng = np.random.default_rng(1)
+    gamma = np.concatenate([10.0 ** rng.uniform(-320, 0.19, 300), [0.0, 0.5 * math.pi, 0.7]])
+    gamma = np.minimum(gamma, 0.5 * math.pi)
+    ratio = np.concatenate([rng.uniform(0.0, 1.0, 150), 1.0 - 10.0 ** rng.uniform(-16, 0, 150),
+                            [0.0, 0.5, 1.0]])
+    eq = solve_equilibrium(gamma.reshape(3, -1), (ratio * gamma).reshape(3, -1), 0.3)
+    for i, (g, d) in enumerate(zip(gamma, ratio * gamma)):
+        point = solve_equilibrium(g, d, 0.3)
+        for name, value in point.to_dict().items():
+            assert np.ravel(getattr(eq, name))[i] == value or (value != value), (name, g, d)
+
+
 def test_scalar_input_gives_scalars():
     eq = solve_equilibrium(0.6, 0.2, 1.0)
     assert isinstance(eq.beta_L, float) and isinstance(eq.regime, str)
