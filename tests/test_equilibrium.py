@@ -8,6 +8,7 @@ import pytest
 from groove_model.model.dimensional import dimensional_state
 from groove_model.model.equilibrium import (
     _double_rolling_residual,
+    _walls,
     regime_validity,
     solve_equilibrium,
 )
@@ -97,17 +98,37 @@ def test_domain_edges_are_solved_without_failure():
     assert edge.beta_L == 0.0 and edge.regime == "rolling_sliding"
 
 
-def test_double_rolling_root_is_unique():
-    """Exactly one sign change of the reduced equation on a fine grid in sqrt(a)."""
-    w = np.linspace(0.0, 1.0, 4001)[1:-1]
-    a = w**2
+def test_double_rolling_equation_is_increasing_and_bracketed():
+    """The reduced equation increases on both half-brackets, with a sign change in the chosen one.
+
+    Checks numerically what the docstring proves: ``P(w)`` increasing on ``[0, 1]``, so one root.
+    """
+    x = np.linspace(0.0, 0.5, 2001)
     for gamma in np.linspace(0.02, 0.5 * math.pi - 0.02, 40):
         for delta in np.linspace(0.02, 0.98, 25) * gamma:
-            args = (math.pi - 2 * gamma, math.sin(gamma + delta), math.sin(gamma - delta),
-                    2 * math.sin(gamma) * math.sin(delta), 1.0)
-            values = _double_rolling_residual(a, *args)
-            signs = np.sign(values[values != 0.0])
-            assert np.count_nonzero(np.diff(signs)) == 1, (gamma, delta)
+            walls = _walls(np.array(gamma), np.array(delta))
+            K = walls["E"] * walls["tan_g"]
+            chosen = float(walls["rho0"] > 0.125 + 5.0 / 12.0 * K)
+            for upper in (0.0, 1.0):
+                values = _double_rolling_residual(x, upper, walls["rho0"],
+                                                  walls["one_minus_rho0"], K)
+                assert np.all(np.diff(values) > 0.0), (gamma, delta, upper)
+                if upper == chosen:
+                    assert values[0] < 0.0 <= values[-1], (gamma, delta, upper)
+
+
+def test_arrays_give_the_pointwise_results():
+    """One vectorised call (both half-brackets, every regime, all scales) equals point calls."""
+    rng = np.random.default_rng(1)
+    gamma = np.concatenate([10.0 ** rng.uniform(-320, 0.19, 300), [0.0, 0.5 * math.pi, 0.7]])
+    gamma = np.minimum(gamma, 0.5 * math.pi)
+    ratio = np.concatenate([rng.uniform(0.0, 1.0, 150), 1.0 - 10.0 ** rng.uniform(-16, 0, 150),
+                            [0.0, 0.5, 1.0]])
+    eq = solve_equilibrium(gamma.reshape(3, -1), (ratio * gamma).reshape(3, -1), 0.3)
+    for i, (g, d) in enumerate(zip(gamma, ratio * gamma)):
+        point = solve_equilibrium(g, d, 0.3)
+        for name, value in point.to_dict().items():
+            assert np.ravel(getattr(eq, name))[i] == value or (value != value), (name, g, d)
 
 
 def test_scalar_input_gives_scalars():

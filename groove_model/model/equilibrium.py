@@ -1,46 +1,45 @@
 r"""Every equilibrium of the ball: the point solver and the regime classification.
 
-The model is Halsey & Ertas, "A Ball in a Groove" (``shared/paper``; conventions in
-``shared/MODEL.md``). All forces scale with ``C Z^(3/2)`` (Hertz, ``C = sqrt(R)/G``), so the
-solver works with the scaled normal forces ``n = sin(beta)^(3/2)`` and the scaled common
-tangential force ``t = T / (C Z^(3/2))``.
+The model is Halsey & Ertas, "A Ball in a Groove". Walls at ``theta_L = gamma + delta`` and
+``theta_R = gamma - delta``; the ball's centre moves by ``Z`` at angles ``beta_L`` and
+``beta_R = pi - 2 gamma - beta_L`` to the walls and rolls by ``upsilon = R phi / Z``. All forces
+scale with ``C Z^(3/2)`` (Hertz, paper Eq. hertz), so the solver works with the scaled normal
+forces ``n = sin(beta)^(3/2)`` (Eq. norm) and the scaled common tangential force
+``t = T / (C Z^(3/2))``; ``c`` is the compliance ratio ``(T/N) / (u_t/u_n)`` (Eq. prop: ``c = 1``).
 
-Double rolling (paper Eqs. 1-3 with Eqs. norm, rollt, prop, ``c`` the compliance ratio):
+Every state is written in one unknown, the load-share root
 
 .. math::
 
-    t = c\sqrt{\sin\beta_L}(\cos\beta_L + \upsilon) = c\sqrt{\sin\beta_R}(\cos\beta_R - \upsilon)
-    \quad\text{(torque, } T_L = T_R)
+    w = \sqrt{\sin\beta_L / \sin\beta_R} \in [0, 1], \qquad \rho = w^2, \qquad
+    n_L / n_R = w^3,
 
-    n_L \sin\theta_L - n_R \sin\theta_R + t(\cos\theta_R - \cos\theta_L) = 0
-    \quad\text{(horizontal balance, Eq. 2)}
+with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Double rolling
+reduces to one equation :math:`P(w) = 0` (a quartic, :func:`double_rolling_state`) that is
+strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
+``scipy.optimize.elementwise.find_root``), never by Newton from a guess. Rolling sliding gives
+``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force ratio, ``upsilon``
+and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``, ``w`` and ``1 - w``
+(:func:`_kinematics`), each a sum of terms of one sign or a difference that vanishes only where
+the physical quantity itself does (``upsilon`` on the no-roll lines, ``d_L`` at the regime
+boundary, ``cos beta_R`` at ``beta_R = pi/2``).
 
-``upsilon`` enters linearly; eliminating it gives
-``t = c q_L q_R (cos beta_L + cos beta_R) / (q_L + q_R)`` with ``q = sqrt(sin beta)``, and the
-horizontal balance times ``q_L + q_R`` becomes one scalar equation in
-``a = beta_L / (pi - 2 gamma)`` on ``[0, 1]``, negative at ``a = 0`` and positive at ``a = 1``
-whenever ``0 < delta < gamma < pi/2``. It is bracketed and solved by Chandrupatla's method
-(scipy.optimize.elementwise.find_root), never by Newton from a guess. Its root is unique: a
-sign-change count on a fine grid over the domain (see tests) finds exactly one.
-
-Rolling-sliding (left wall slides, paper's "Rolling-sliding solutions"): ``T = k N_L`` and
-the horizontal balance give ``T/N_R = mu = sin theta_R / (cos theta_R - cos theta_L + sin
-theta_L / k)``, then ``(sin beta_L / sin beta_R)^(3/2) = mu / k`` is solved in closed form,
-``tan beta_L = rho sin 2gamma / (1 - rho cos 2gamma)`` with ``rho = (mu/k)^(2/3)``; the rolling
-right wall gives ``upsilon = cos beta_R - mu sin beta_R / c`` and the slip of the left contact
-is ``d_L / Z = cos beta_L + upsilon - (k/c) sin beta_L``.
+No formula subtracts nearly equal angles or cosines, and ratios of small sines are formed
+before they can underflow, so the same expressions hold from the corners of the domain
+``0 <= delta <= gamma <= pi/2`` down to subnormal ``gamma``, with no series and no case split
+near the origin: fields are accurate to a few ulps of their size, and the three differences
+above to a few ulps of their terms (checked against a 50-digit reference in the tests).
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, fields
 from enum import Enum
 
 import numpy as np
 from scipy.optimize import elementwise
 
-from .parameters import Parameters, check_domain
+from .parameters import HALF_PI, Parameters, check_domain
 
 __all__ = [
     "Equilibrium",
@@ -53,6 +52,9 @@ __all__ = [
 ]
 
 _EPS = np.finfo(float).eps
+# Two subnormal spacings: the bracket of a root of any size closes (adjacent floats differ by at
+# least one spacing, and the relative tolerance alone is 0 for subnormal roots).
+_XATOL = 2.0 * np.finfo(float).smallest_subnormal
 
 
 class Regime(str, Enum):
@@ -89,9 +91,13 @@ class Equilibrium:
     d_L, d_R : float
         Slip of each contact down its wall, per ``Z`` (``>= 0``).
     T_over_N_L, T_over_N_R, N_L_over_N_R : float
-        Force ratios (``inf`` where a normal force vanishes on the domain edge ``delta = gamma``).
+        Force ratios (``T/N_L = inf`` where ``N_L`` vanishes on the domain edge
+        ``delta = gamma``). ``N_L/N_R`` is computed from the kinematics, not from ``n_L, n_R``,
+        so it stays exact where both scaled forces vanish (closed groove, its limit value) or
+        underflow (near the origin).
     n_L, n_R, t : float
-        Scaled forces ``N_L, N_R, T`` divided by ``C Z^(3/2)``.
+        Scaled forces ``N_L, N_R, T`` divided by ``C Z^(3/2)``; of order ``gamma^(3/2)`` near
+        the origin, so subnormal or 0 for ``gamma`` below about ``1e-205`` (their exact values).
     """
 
     regime: object
@@ -128,83 +134,279 @@ def _ratio(num, den):
     return out
 
 
-def _double_rolling_residual(a, omega, sin_tL, sin_tR, D, c):
-    """Horizontal balance times ``q_L + q_R`` with ``upsilon`` eliminated; increasing through 0."""
-    s_L, s_R = np.sin(a * omega), np.sin((1.0 - a) * omega)
-    c_L, c_R = np.cos(a * omega), np.cos((1.0 - a) * omega)
-    q_L, q_R = np.sqrt(s_L), np.sqrt(s_R)
-    return (q_L + q_R) * (s_L * q_L * sin_tL - s_R * q_R * sin_tR) + c * q_L * q_R * (c_L + c_R) * D
+def _quotient(num, den, where):
+    """``num / den`` where ``where`` holds, ``0`` elsewhere (no warnings)."""
+    out = np.zeros(np.broadcast(num, den).shape)
+    np.divide(num, den, out=out, where=where)
+    return out
+
+
+def _flat(gamma, delta):
+    """Float copies of the broadcast inputs as 1-d arrays, and the broadcast shape."""
+    gamma, delta = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(delta, float))
+    return gamma.ravel().copy(), delta.ravel().copy(), gamma.shape
+
+
+def _shaped(values: dict, shape) -> dict:
+    """Each array reshaped to the inputs' broadcast shape (numpy scalars for scalar inputs)."""
+    return {name: np.reshape(value, shape)[()] for name, value in values.items()}
+
+
+def _walls(gamma, delta):
+    """Trigonometric terms of the groove, each to a few ulps over the whole domain.
+
+    Returns
+    -------
+    dict of ndarray
+        ``sin_g, cos_g, tan_g`` of ``gamma``; ``rho0 = sin theta_R / sin theta_L``,
+        ``one_minus_rho0 = 1 - rho0`` and ``E = (cos theta_R - cos theta_L) / sin theta_L``.
+
+    Notes
+    -----
+    ``1 - rho0 = 2 cos gamma sin delta / sin theta_L`` and
+    ``E = 2 sin gamma sin delta / sin theta_L`` (sum-to-product) are formed from the ratio
+    ``sin delta / sin theta_L <= 1``, never as differences of cosines or with products of two
+    small sines, so they neither cancel near ``delta = 0`` nor underflow near the origin.
+    ``sin theta_L = sin gamma cos delta + cos gamma sin delta`` adds two non-negative terms
+    (``sin(gamma + delta)`` would cancel near ``theta_L = pi``). The float nearest ``pi/2`` stands
+    for ``pi/2`` itself (``cos = 0``), the domain edge that :func:`check_domain` clamps to.
+    """
+    sin_g, sin_d = np.sin(gamma), np.sin(delta)
+    cos_g = np.where(gamma >= HALF_PI, 0.0, np.cos(gamma))
+    cos_d = np.where(delta >= HALF_PI, 0.0, np.cos(delta))
+    sin_tL = sin_g * cos_d + cos_g * sin_d
+    # gamma - delta is exact when delta >= gamma/2 (Sterbenz); at gamma = pi/2 the float
+    # gamma - delta would be off by pi/2 - HALF_PI = 6e-17, so use sin(pi/2 - delta) = cos delta.
+    sin_tR = np.where(gamma >= HALF_PI, cos_d, np.sin(gamma - delta))
+    positive = sin_tL > 0.0  # false only at the origin and at theta_L = pi, theta_R = 0
+    share = _quotient(sin_d, sin_tL, positive)
+    return dict(sin_g=sin_g, cos_g=cos_g, tan_g=_quotient(sin_g, cos_g, cos_g > 0.0),
+                rho0=_quotient(sin_tR, sin_tL, positive), one_minus_rho0=2.0 * cos_g * share,
+                E=2.0 * sin_g * share)
+
+
+def _kinematics(w, v, sin_g, cos_g):
+    r"""Angles and wall terms of the state with load-share root ``w`` (``v = 1 - w``, accurate).
+
+    Returns
+    -------
+    dict of ndarray
+        ``rho = w^2``, ``beta_L, beta_R``, ``sin_L, sin_R, cos_L, cos_R`` (of ``beta_L``,
+        ``beta_R``), ``n_L, n_R``.
+
+    Notes
+    -----
+    With ``e = (beta_R - beta_L)/2`` the split ``beta_{L,R} = pi/2 - gamma -+ e`` turns
+    ``sin beta_L = rho sin beta_R`` into ``(1 - rho) cos gamma cos e = (1 + rho) sin gamma sin e``.
+    With ``m = 1 - rho = v (1 + w)`` and ``h = hypot(m cos gamma, (1 + rho) sin gamma)``:
+
+    .. math::
+
+        \sin\beta_R = \frac{2 \sin\gamma\cos\gamma}{h}, \quad
+        \sin\beta_L = \rho \sin\beta_R, \quad
+        \cos\beta_{L,R} = \frac{(1 + \rho)\sin^2\gamma \pm m \cos^2\gamma}{h},
+
+    and ``beta = atan2(sin beta, cos beta)``. Only ``cos beta_R`` is a difference; it vanishes
+    where ``beta_R = pi/2`` and its error is absolute, ``eps`` times the terms. The symmetric state
+    (``v = 0``) is set directly, which also covers the origin (``h = 0``).
+    """
+    rho = w * w
+    m = v * (1.0 + w)
+    a, b = (1.0 + rho) * sin_g * sin_g, m * cos_g * cos_g
+    h = np.hypot(m * cos_g, (1.0 + rho) * sin_g)
+    symmetric = v == 0.0  # NaN stays in the general branch and propagates
+    h_safe = np.where(symmetric, 1.0, h)
+    sin_R = np.where(symmetric, cos_g, (2.0 * sin_g) * (cos_g / h_safe))
+    cos_L = np.where(symmetric, sin_g, (a + b) / h_safe)
+    cos_R = np.where(symmetric, sin_g, (a - b) / h_safe)
+    sin_L = rho * sin_R
+    return dict(rho=rho, m=m, h=h, beta_L=np.arctan2(sin_L, cos_L),
+                beta_R=np.arctan2(sin_R, cos_R), sin_L=sin_L, sin_R=sin_R, cos_L=cos_L,
+                cos_R=cos_R, n_L=sin_L * np.sqrt(sin_L), n_R=sin_R * np.sqrt(sin_R))
+
+
+def _double_rolling_residual(x, upper, rho0, one_minus_rho0, K):
+    r"""The double-rolling equation :math:`P(w)`, increasing in ``x`` on ``[0, 1/2]``.
+
+    ``x = w`` where ``upper == 0`` (``P = w^3 + K f(w) - rho0``) and ``x = v = 1 - w`` where
+    ``upper == 1`` (``P = (1 - rho0) + K f(w) - v (1 + w + w^2)``, sign flipped so it increases),
+    with ``f(w) = w (1 + w^2)/(1 + w)``; the unknown is always the smaller of ``w`` and ``1 - w``.
+    """
+    up = upper > 0.0
+    w = np.where(up, 1.0 - x, x)
+    friction = K * (w * (1.0 + w * w) / (1.0 + w))
+    return np.where(up, x * (1.0 + w + w * w) - one_minus_rho0 - friction,
+                    w * w * w + friction - rho0)
 
 
 def double_rolling_state(gamma, delta, params: Parameters) -> dict:
-    """The double-rolling solution (``d_L = d_R = 0``) wherever it is defined.
+    r"""The double-rolling solution (``d_L = d_R = 0``) wherever it is defined.
 
     Parameters
     ----------
     gamma, delta : ndarray
-        Points of the domain (already checked), any broadcastable shapes.
+        Points of the domain ``0 <= delta <= gamma <= pi/2`` (radians, not checked here), any
+        broadcastable shapes. NaN, or a point outside the domain (no bracket), gives NaN.
     params : Parameters
 
     Returns
     -------
     dict of ndarray
-        ``beta_L, beta_R, upsilon, n_L, n_R, t, T_over_N_L, T_over_N_R``. On the edge
-        ``gamma = pi/2`` (closed groove) no double-rolling state exists and every entry is NaN
-        there; on ``delta = gamma < pi/2`` the limit ``beta_L = 0`` (``T/N_L = inf``) is returned.
+        ``beta_L, beta_R, upsilon, n_L, n_R, t, T_over_N_L, T_over_N_R, N_L_over_N_R``. On the
+        edge ``gamma = pi/2`` (closed groove) no double-rolling state exists and every entry is
+        NaN there; on ``delta = gamma < pi/2`` the limit ``beta_L = 0`` (``T/N_L = inf``) is
+        returned; at the origin the symmetric limit (``beta = pi/2``).
+
+    Notes
+    -----
+    Torque balance (paper Eq. 3, ``T_L = T_R``) with proportional loading (Eqs. rollt, prop):
+
+    .. math::
+
+        t = c q_L (\cos\beta_L + \upsilon) = c q_R (\cos\beta_R - \upsilon), \quad
+        q = \sqrt{\sin\beta},
+
+    is linear in ``upsilon``; eliminating it,
+    ``upsilon = (cos beta_R - w cos beta_L)/(1 + w)`` and
+    ``t = c q_R w (cos beta_L + cos beta_R)/(1 + w)``. Because ``beta_L + beta_R = pi - 2 gamma``,
+
+    .. math::
+
+        \cos\beta_L + \cos\beta_R = \tan\gamma\,(\sin\beta_L + \sin\beta_R)
+        \quad (\text{both} = 2 \{\sin,\cos\}\gamma \, \sin(\beta_L + \gamma)),
+
+    so the horizontal balance (Eq. 2) ``n_L sin theta_L - n_R sin theta_R + t (cos theta_R -
+    cos theta_L) = 0``, divided by ``n_R sin theta_L``, depends on ``w`` alone:
+
+    .. math::
+
+        P(w) = w^3 + K \frac{w (1 + w^2)}{1 + w} - \rho_0 = 0, \qquad
+        \rho_0 = \frac{\sin\theta_R}{\sin\theta_L}, \quad
+        K = c \tan\gamma \, \frac{2 \sin\gamma \sin\delta}{\sin\theta_L}.
+
+    ``P`` is strictly increasing on ``[0, 1]`` (``d/dw [w (1 + w^2)/(1 + w)] = (1 + 3 w^2 +
+    2 w^3)/(1 + w)^2 > 0``, ``K >= 0``), ``P(0) = -rho0 <= 0`` and ``P(1) = 1 + K - rho0 >= 0``:
+    the root exists and is unique. (The paper's Eqs. tran1 and tran2 are the same two balances
+    divided by ``n_L sin theta_R`` and by ``q_R (cos beta_R - upsilon)``, which vanish on the
+    domain's edges.) Times ``1 + w``, ``P`` is the quartic
+    ``w^4 + (1 + K) w^3 + (K - rho0) w - rho0``. Since ``P(1/2) >= 0`` iff
+    ``rho0 <= 1/8 + 5K/12``, the root is bracketed either in ``w`` on ``[0, 1/2]`` or in
+    ``v = 1 - w`` on ``[0, 1/2]``, where ``P = (1 - rho0) + K f(w) - v (1 + w + w^2)`` (minus
+    sign aside) is again a sum of terms of one sign; the unknown is always the small one of
+    ``w, 1 - w``, so its relative accuracy carries over to ``beta_L`` (small near
+    ``delta = gamma``) and to ``beta_R - beta_L`` and ``upsilon`` (small near ``delta = 0``). Then
+
+    .. math::
+
+        \frac{T}{N_L} = \frac{c \tan\gamma (1 + \rho)}{\rho (1 + w)}, \quad
+        \frac{T}{N_R} = w^3 \frac{T}{N_L}, \quad
+        \upsilon = \frac{(1 - w) [(1 + \rho) \sin^2\gamma - (1 + w)^2 \cos^2\gamma]}{h (1 + w)}
+
+    (``h`` of :func:`_kinematics`). The bracket of ``upsilon`` changes sign on
+    ``tan^2 gamma = (1 + w)^2/(1 + w^2)``: at ``arctan sqrt 2`` on ``delta = 0`` (``w = 1``) and
+    at ``pi/4`` on ``delta = gamma`` (``w = 0``), the paper's ends of the no-roll line.
     """
-    gamma, delta = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(delta, float))
-    omega = math.pi - 2.0 * gamma
-    a = np.full(gamma.shape, np.nan)
-    a[(delta == 0.0) & (omega > 0.0)] = 0.5  # symmetric solution, exact
-    a[(delta >= gamma) & (omega > 0.0) & (delta > 0.0)] = 0.0  # theta_R = 0: N_L -> 0
-    inner = np.isnan(a) & (omega > 0.0)
+    gamma, delta, shape = _flat(gamma, delta)
+    walls = _walls(gamma, delta)
+    sin_g, cos_g, rho0 = walls["sin_g"], walls["cos_g"], walls["rho0"]
+    K = params.c * walls["E"] * walls["tan_g"]
+    # w = 1 on delta = 0 and w = 0 on delta = gamma are exact; NaN marks no state.
+    w = np.where(delta == 0.0, 1.0, np.where(rho0 == 0.0, 0.0, np.nan))
+    exists = cos_g > 0.0
+    w[~exists] = np.nan
+    inner = np.isnan(w) & exists & (delta > 0.0)
+    v = 1.0 - w
     if np.any(inner):
-        g, d, w = gamma[inner], delta[inner], omega[inner]
-        args = (w, np.sin(g + d), np.sin(g - d), 2.0 * np.sin(g) * np.sin(d), params.c)
+        upper = (rho0[inner] > 0.125 + (5.0 / 12.0) * K[inner]).astype(float)
         res = elementwise.find_root(
             _double_rolling_residual,
-            (np.zeros_like(g), np.ones_like(g)),
-            args=args,
-            tolerances=dict(xatol=1e-300, xrtol=2.0 * _EPS, fatol=0.0, frtol=0.0),
+            (np.zeros(upper.shape), np.full(upper.shape, 0.5)),
+            args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
+            tolerances=dict(xatol=_XATOL, xrtol=2.0 * _EPS, fatol=0.0, frtol=0.0),
         )
-        a[inner] = res.x
-    beta_L, beta_R = a * omega, (1.0 - a) * omega
-    s_L, s_R, c_L, c_R = np.sin(beta_L), np.sin(beta_R), np.cos(beta_L), np.cos(beta_R)
-    q_L, q_R = np.sqrt(s_L), np.sqrt(s_R)
-    upsilon = (q_R * c_R - q_L * c_L) / (q_L + q_R)
-    t = params.c * q_L * (c_L + upsilon)
-    n_L, n_R = s_L * q_L, s_R * q_R
-    return dict(
-        beta_L=beta_L, beta_R=beta_R, upsilon=upsilon, n_L=n_L, n_R=n_R, t=t,
-        T_over_N_L=_ratio(t, n_L), T_over_N_R=_ratio(t, n_R),
-    )
+        x = np.where(res.success, res.x, np.nan)
+        w[inner] = np.where(upper > 0.0, 1.0 - x, x)
+        v[inner] = np.where(upper > 0.0, x, 1.0 - x)
+    kin = _kinematics(w, v, sin_g, cos_g)
+    rho = kin["rho"]
+    no_roll = (1.0 + rho) * sin_g * sin_g - (1.0 + w) ** 2 * cos_g * cos_g
+    upsilon = v * _quotient(no_roll, kin["h"] * (1.0 + w), v > 0.0)  # NaN where w is
+    # tan gamma multiplies last: for subnormal gamma it is exact and the product rounds once.
+    T_over_N_L = params.c * _ratio(1.0 + rho, rho * (1.0 + w)) * walls["tan_g"]
+    T_over_N_R = params.c * ((1.0 + rho) * w / (1.0 + w)) * walls["tan_g"]
+    return _shaped(dict(
+        beta_L=kin["beta_L"], beta_R=kin["beta_R"], upsilon=upsilon, n_L=kin["n_L"],
+        n_R=kin["n_R"], t=T_over_N_R * kin["n_R"], T_over_N_L=T_over_N_L, T_over_N_R=T_over_N_R,
+        N_L_over_N_R=w * w * w,
+    ), shape)
 
 
 def rolling_sliding_state(gamma, delta, params: Parameters) -> dict:
-    """The rolling-sliding solution (left wall slides, ``T = k N_L``; right wall rolls).
+    r"""The rolling-sliding solution (left wall slides, ``T = k N_L``; right wall rolls).
+
+    Parameters
+    ----------
+    gamma, delta : ndarray
+        Points of the domain (radians, not checked here), any broadcastable shapes.
+    params : Parameters
 
     Returns
     -------
     dict of ndarray
-        ``beta_L, beta_R, upsilon, d_L, mu, n_L, n_R, t``; NaN only at the origin, where
-        ``mu`` is ``0/0``.
+        ``beta_L, beta_R, upsilon, d_L, mu, n_L, n_R, t, N_L_over_N_R``; NaN only at the
+        origin, where ``mu`` is ``0/0``. At ``gamma = pi/2`` (closed groove) the limit
+        ``beta_L = beta_R = 0``, ``upsilon = 1``, ``d_L = 2``.
+
+    Notes
+    -----
+    Paper, "Rolling-sliding solutions": ``T = k N_L`` in the horizontal balance (Eq. 2) gives
+
+    .. math::
+
+        \frac{T}{N_R} = \mu = \frac{\sin\theta_R}{\cos\theta_R - \cos\theta_L
+        + \sin\theta_L / k}, \qquad w^3 = \frac{N_L}{N_R} = \frac{\mu}{k}
+        = \frac{\rho_0}{1 + k E},
+
+    with ``1 - w^3 = (1 - rho0 + kE)/(1 + kE)`` and ``v = 1 - w = (1 - w^3)/(1 + w + w^2)``
+    formed without cancellation. The rolling right wall (``mu = c (cos beta_R - upsilon)/
+    sin beta_R``) and the sliding left wall (``k = c (cos beta_L + upsilon - d_L)/sin beta_L``,
+    Eq. tang with Amontons) give
+
+    .. math::
+
+        \upsilon = \cos\beta_R - \frac{\mu}{c}\sin\beta_R, \qquad
+        \frac{d_L}{Z} = \frac{2\sin\gamma}{h}\Big[(1 + \rho)\sin\gamma
+        - \frac{k}{c}\rho(1 + w)\cos\gamma\Big],
+
+    the second from ``cos beta_L + cos beta_R = 2 (1 + rho) sin^2 gamma / h`` (see
+    :func:`_kinematics`); its bracket changes sign exactly where the double-rolling
+    ``T/N_L = k``.
     """
-    gamma, delta = np.broadcast_arrays(np.asarray(gamma, float), np.asarray(delta, float))
+    gamma, delta, shape = _flat(gamma, delta)
     k, c = params.k, params.c
-    sin_tL, sin_tR = np.sin(gamma + delta), np.sin(gamma - delta)
-    den = 2.0 * np.sin(gamma) * np.sin(delta) + sin_tL / k
-    mu = np.full(gamma.shape, np.nan)
-    np.divide(sin_tR, den, out=mu, where=den > 0.0)
-    rho = np.cbrt(mu / k) ** 2
-    beta_L = np.arctan2(rho * np.sin(2.0 * gamma), 1.0 - rho * np.cos(2.0 * gamma))
-    beta_R = np.maximum(math.pi - 2.0 * gamma - beta_L, 0.0)
-    s_L, s_R, c_L, c_R = np.sin(beta_L), np.sin(beta_R), np.cos(beta_L), np.cos(beta_R)
-    upsilon = c_R - mu * s_R / c
-    n_L, n_R = s_L * np.sqrt(s_L), s_R * np.sqrt(s_R)
-    return dict(
-        beta_L=beta_L, beta_R=beta_R, upsilon=upsilon, mu=mu,
-        d_L=c_L + upsilon - (k / c) * s_L, n_L=n_L, n_R=n_R, t=k * n_L,
-    )
+    walls = _walls(gamma, delta)
+    sin_g, cos_g = walls["sin_g"], walls["cos_g"]
+    # k E overflows only for k near the float maximum; its limit is mu/k = 0, 1 - mu/k = 1.
+    with np.errstate(over="ignore", invalid="ignore"):
+        kE = k * walls["E"]
+        share = walls["rho0"] / (1.0 + kE)  # mu / k = N_L / N_R
+        rest = np.where(kE == np.inf, 1.0, (walls["one_minus_rho0"] + kE) / (1.0 + kE))
+    w = np.cbrt(share)
+    v = rest / (1.0 + w + w * w)
+    origin = gamma == 0.0
+    share[origin] = w[origin] = v[origin] = np.nan
+    kin = _kinematics(w, v, sin_g, cos_g)
+    rho = kin["rho"]
+    mu = k * share
+    upsilon = kin["cos_R"] - (mu / c) * kin["sin_R"]
+    # The bracket is formed before the factor 2 sin(gamma)/h ~ gamma: d_L ~ gamma^2 may
+    # underflow near the origin, but never with the wrong sign.
+    slip = (1.0 + rho) * sin_g - (k / c) * rho * (1.0 + w) * cos_g
+    d_L = _quotient(2.0 * sin_g, kin["h"], kin["h"] > 0.0) * slip  # NaN at the origin
+    return _shaped(dict(
+        beta_L=kin["beta_L"], beta_R=kin["beta_R"], upsilon=upsilon, mu=mu, d_L=d_L,
+        n_L=kin["n_L"], n_R=kin["n_R"], t=k * kin["n_L"], N_L_over_N_R=share,
+    ), shape)
 
 
 def regime_validity(gamma, delta, k_or_params):
@@ -223,7 +425,9 @@ def regime_validity(gamma, delta, k_or_params):
     rs = rolling_sliding_state(gamma, delta, params)
     with np.errstate(invalid="ignore"):
         dr_valid = (dr["T_over_N_L"] <= params.k) & (dr["T_over_N_R"] <= params.k)
-        rs_valid = (rs["d_L"] >= 0.0) & (rs["mu"] <= params.k)
+        # Near the origin d_L ~ gamma^2 underflows; a negative slip then rounds to -0.0,
+        # which compares >= 0, so its sign bit decides.
+        rs_valid = (rs["d_L"] >= 0.0) & ~np.signbit(rs["d_L"]) & (rs["mu"] <= params.k)
     return dr_valid, rs_valid
 
 
@@ -250,6 +454,9 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     ------
     ValueError, TypeError
         For ``k`` or angles outside their ranges (the message names the quantity and range).
+    RuntimeError
+        If the bracketed double-rolling solve fails at a point of the open groove (a bug, never
+        expected: the bracket is proven valid there).
     """
     params = Parameters.coerce(k_or_params)
     scalar = np.ndim(gamma) == 0 and np.ndim(delta) == 0
@@ -257,6 +464,13 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     gamma, delta = np.atleast_1d(gamma), np.atleast_1d(delta)
     k, c = params.k, params.c
     dr = double_rolling_state(gamma, delta, params)
+    # The bracket is valid everywhere in the open groove (see double_rolling_state), so a NaN
+    # there is a bug; refuse to return a regime decided on it.
+    failed = np.isnan(dr["beta_L"]) & (gamma < HALF_PI)
+    if np.any(failed):
+        i = np.flatnonzero(failed)[0]
+        raise RuntimeError(f"double-rolling root not found at gamma = {gamma[i]!r} rad, "
+                           f"delta = {delta[i]!r} rad, although it is bracketed there")
     sliding_both = (delta == 0.0) & (gamma > params.gamma_limit)
     with np.errstate(invalid="ignore"):
         use_dr = (dr["T_over_N_L"] <= k) & (dr["T_over_N_R"] <= k) & ~sliding_both
@@ -271,12 +485,13 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
         "N_L_over_N_R", "n_L", "n_R", "t")}
     regime = np.full(gamma.shape, Regime.DOUBLE_ROLLING.value, dtype=object)
 
-    for name in ("beta_L", "beta_R", "upsilon", "n_L", "n_R", "t", "T_over_N_L", "T_over_N_R"):
+    for name in ("beta_L", "beta_R", "upsilon", "n_L", "n_R", "t", "T_over_N_L", "T_over_N_R",
+                 "N_L_over_N_R"):
         out[name][use_dr] = dr[name][use_dr]
 
     if np.any(use_rs):
         rs = rolling_sliding_state(gamma[use_rs], delta[use_rs], params)
-        for name in ("beta_L", "beta_R", "upsilon", "d_L", "n_L", "n_R", "t"):
+        for name in ("beta_L", "beta_R", "upsilon", "d_L", "n_L", "n_R", "t", "N_L_over_N_R"):
             out[name][use_rs] = rs[name]
         out["T_over_N_L"][use_rs] = k
         out["T_over_N_R"][use_rs] = rs["mu"]
@@ -284,16 +499,17 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
 
     if np.any(sliding_both):
         g = gamma[sliding_both]
-        beta = 0.5 * math.pi - g
-        n = np.cos(g) ** 1.5
-        slip = np.sin(g) - (k / c) * np.cos(g)
+        walls = _walls(g, np.zeros_like(g))
+        sin_g, cos_g = walls["sin_g"], walls["cos_g"]
+        beta = np.arctan2(cos_g, sin_g)  # pi/2 - gamma, exactly 0 at gamma = pi/2
+        n = cos_g * np.sqrt(cos_g)
+        slip = sin_g - (k / c) * cos_g
         for name, value in (("beta_L", beta), ("beta_R", beta), ("upsilon", 0.0), ("d_L", slip),
                             ("d_R", slip), ("T_over_N_L", k), ("T_over_N_R", k),
-                            ("n_L", n), ("n_R", n), ("t", k * n)):
+                            ("N_L_over_N_R", 1.0), ("n_L", n), ("n_R", n), ("t", k * n)):
             out[name][sliding_both] = value
         regime[sliding_both] = Regime.DOUBLE_SLIDING.value
 
-    out["N_L_over_N_R"] = _ratio(out["n_L"], out["n_R"])
     rotation = np.where(out["upsilon"] < 0.0, Rotation.CLOCKWISE.value,
                         np.where(out["upsilon"] > 0.0, Rotation.COUNTERCLOCKWISE.value,
                                  Rotation.NONE.value)).astype(object)
