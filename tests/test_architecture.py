@@ -21,11 +21,7 @@ MAX_FUNCTION_LINES = 80
 #: Modules exempt from the size limits (none).
 SIZE_EXEMPT: set[str] = set()
 #: Private names tests may still import, with the reason.
-PRIVATE_IMPORTS_ALLOWED = {
-    # groove_model/model/equilibrium.py is being rewritten in another change; to be made
-    # public there.
-    ("groove_model.model.equilibrium", "_double_rolling_residual"),
-}
+PRIVATE_IMPORTS_ALLOWED: set[tuple[str, str]] = set()
 
 
 def _modules(package: Path):

@@ -7,8 +7,8 @@ import pytest
 
 from groove_model.model.dimensional import dimensional_state
 from groove_model.model.equilibrium import (
-    _double_rolling_residual,
-    _walls,
+    double_rolling_equation,
+    wall_terms,
     regime_validity,
     solve_equilibrium,
 )
@@ -106,11 +106,11 @@ def test_double_rolling_equation_is_increasing_and_bracketed():
     x = np.linspace(0.0, 0.5, 2001)
     for gamma in np.linspace(0.02, 0.5 * math.pi - 0.02, 40):
         for delta in np.linspace(0.02, 0.98, 25) * gamma:
-            walls = _walls(np.array(gamma), np.array(delta))
+            walls = wall_terms(np.array(gamma), np.array(delta))
             K = walls["E"] * walls["tan_g"]
             chosen = float(walls["rho0"] > 0.125 + 5.0 / 12.0 * K)
             for upper in (0.0, 1.0):
-                values = _double_rolling_residual(x, upper, walls["rho0"],
+                values = double_rolling_equation(x, upper, walls["rho0"],
                                                   walls["one_minus_rho0"], K)
                 assert np.all(np.diff(values) > 0.0), (gamma, delta, upper)
                 if upper == chosen:

@@ -26,8 +26,8 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from groove_model.equilibrium import double_rolling_state, solve_equilibrium
-from groove_model.parameters import HALF_PI, Compliance, Parameters
+from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
+from groove_model.model.parameters import HALF_PI, Compliance, Parameters
 
 DIGITS = 50
 EPS = np.finfo(float).eps

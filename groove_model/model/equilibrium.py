@@ -45,10 +45,12 @@ __all__ = [
     "Equilibrium",
     "Regime",
     "Rotation",
+    "double_rolling_equation",
     "double_rolling_state",
     "regime_validity",
     "rolling_sliding_state",
     "solve_equilibrium",
+    "wall_terms",
 ]
 
 _EPS = np.finfo(float).eps
@@ -152,7 +154,7 @@ def _shaped(values: dict, shape) -> dict:
     return {name: np.reshape(value, shape)[()] for name, value in values.items()}
 
 
-def _walls(gamma, delta):
+def wall_terms(gamma, delta):
     """Trigonometric terms of the groove, each to a few ulps over the whole domain.
 
     Returns
@@ -225,7 +227,7 @@ def _kinematics(w, v, sin_g, cos_g):
                 cos_R=cos_R, n_L=sin_L * np.sqrt(sin_L), n_R=sin_R * np.sqrt(sin_R))
 
 
-def _double_rolling_residual(x, upper, rho0, one_minus_rho0, K):
+def double_rolling_equation(x, upper, rho0, one_minus_rho0, K):
     r"""The double-rolling equation :math:`P(w)`, increasing in ``x`` on ``[0, 1/2]``.
 
     ``x = w`` where ``upper == 0`` (``P = w^3 + K f(w) - rho0``) and ``x = v = 1 - w`` where
@@ -307,7 +309,7 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     at ``pi/4`` on ``delta = gamma`` (``w = 0``), the paper's ends of the no-roll line.
     """
     gamma, delta, shape = _flat(gamma, delta)
-    walls = _walls(gamma, delta)
+    walls = wall_terms(gamma, delta)
     sin_g, cos_g, rho0 = walls["sin_g"], walls["cos_g"], walls["rho0"]
     K = params.c * walls["E"] * walls["tan_g"]
     # w = 1 on delta = 0 and w = 0 on delta = gamma are exact; NaN marks no state.
@@ -319,7 +321,7 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     if np.any(inner):
         upper = (rho0[inner] > 0.125 + (5.0 / 12.0) * K[inner]).astype(float)
         res = elementwise.find_root(
-            _double_rolling_residual,
+            double_rolling_equation,
             (np.zeros(upper.shape), np.full(upper.shape, 0.5)),
             args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
             tolerances=dict(xatol=_XATOL, xrtol=2.0 * _EPS, fatol=0.0, frtol=0.0),
@@ -384,7 +386,7 @@ def rolling_sliding_state(gamma, delta, params: Parameters) -> dict:
     """
     gamma, delta, shape = _flat(gamma, delta)
     k, c = params.k, params.c
-    walls = _walls(gamma, delta)
+    walls = wall_terms(gamma, delta)
     sin_g, cos_g = walls["sin_g"], walls["cos_g"]
     # k E overflows only for k near the float maximum; its limit is mu/k = 0, 1 - mu/k = 1.
     with np.errstate(over="ignore", invalid="ignore"):
@@ -499,7 +501,7 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
 
     if np.any(sliding_both):
         g = gamma[sliding_both]
-        walls = _walls(g, np.zeros_like(g))
+        walls = wall_terms(g, np.zeros_like(g))
         sin_g, cos_g = walls["sin_g"], walls["cos_g"]
         beta = np.arctan2(cos_g, sin_g)  # pi/2 - gamma, exactly 0 at gamma = pi/2
         n = cos_g * np.sqrt(cos_g)
