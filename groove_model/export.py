@@ -1,8 +1,8 @@
 """CSV export and import of traced boundaries, written atomically.
 
-A file is written to a temporary name in its target directory and moved into place with
-``os.replace``, so a reader (or a crash) never sees a half-written file. A writer killed
-outright (SIGKILL) cannot remove its temporary file; the name records
+A file is written to a temporary name in its target directory, flushed to disk and moved into
+place with ``os.replace``, so a reader (or a crash) never sees a half-written file. A writer
+killed outright (SIGKILL, power loss) cannot remove its temporary file; the name records
 the owning process, and the next write into that directory removes the temporary files of
 owners that no longer run.
 """
@@ -128,6 +128,29 @@ def _create_temporary(path: Path) -> Path:
         return tmp
 
 
+def _sync_file(path: Path) -> None:
+    # Windows' fsync (_commit) needs a descriptor open for writing
+    fd = os.open(path, os.O_RDONLY if os.name == "posix" else os.O_RDWR)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def _sync_directory(directory: Path) -> None:
+    """Make a rename in ``directory`` durable, where the system can (not on Windows)."""
+    try:
+        fd = os.open(directory, os.O_RDONLY)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
 def atomic_write(path, write) -> Path:
     """Call ``write(tmp_path)`` and move the result to ``path`` atomically.
 
@@ -146,7 +169,9 @@ def atomic_write(path, write) -> Path:
     Notes
     -----
     The temporary file is created with the permissions an ordinary ``open()`` would give
-    (``0o666`` less the umask). Any exception removes it; a writer killed outright cannot, and the next call in the same
+    (``0o666`` less the umask), synced to disk before ``os.replace`` and the directory after
+    it, so that neither a killed process nor a power loss leaves a truncated ``path``. Any
+    exception removes it; a writer killed outright cannot, and the next call in the same
     directory removes it (:func:`remove_stale_temporaries`).
     """
     path = Path(path)
@@ -154,10 +179,12 @@ def atomic_write(path, write) -> Path:
     tmp = _create_temporary(path)
     try:
         write(tmp)
+        _sync_file(tmp)
         os.replace(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
+    _sync_directory(path.parent)
     return path
 
 
