@@ -1,6 +1,6 @@
 """Parameters of the ball-in-a-groove model and the geometry of the groove.
 
-Conventions follow Halsey & Ertas, "A Ball in a Groove" (``shared/paper``): walls at
+Conventions follow Halsey & Ertas, "A Ball in a Groove": walls at
 angles ``theta_L >= theta_R`` to the horizontal, ``gamma = (theta_L + theta_R)/2``,
 ``delta = (theta_L - theta_R)/2``, domain ``0 <= delta <= gamma <= pi/2``, radians.
 """
