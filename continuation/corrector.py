@@ -233,6 +233,8 @@ def correct(
             contraction = dnorm / max(previous, 1e-300)
         if rnorm <= tol:
             converged = _with_tangent(factors, x, rnorm, k, first, contraction)
+            if converged is None:
+                return failure(SINGULAR, rnorm, k)
             if small:
                 return converged
             fallback = converged
@@ -258,12 +260,15 @@ def _solve(factors, rhs: np.ndarray, H: np.ndarray, border: np.ndarray, target: 
     return lu_solve(factors, rhs)
 
 
-def _with_tangent(factors, x, rnorm, k, first, contraction) -> Correction:
-    """A converged correction with the tangent and determinant from the bordered factors."""
+def _with_tangent(factors, x, rnorm, k, first, contraction) -> Correction | None:
+    """A converged correction with the tangent and determinant from the bordered factors;
+    ``None`` if the tangent is not finite (a numerically singular bordered matrix)."""
     unit = np.zeros(x.size)
     unit[-1] = 1.0
     v = lu_solve(factors, unit)
     vnorm = norm(v)
+    if not 0.0 < vnorm < math.inf:
+        return None
     border_det = lu_determinant(*factors)
     return Correction(True, "", x, v / vnorm, vnorm * border_det, rnorm, k, first, contraction,
                       border_det)

@@ -56,8 +56,8 @@ def all_finite(a: np.ndarray) -> bool:
 
 
 def norm(v: np.ndarray) -> float:
-    """Euclidean norm of a 1-D array."""
-    return math.sqrt(float(v @ v))
+    """Euclidean norm of a 1-D array, without overflow for entries up to the largest float."""
+    return math.hypot(*v.tolist())
 
 
 def factor_bordered(jacobian: np.ndarray, border: np.ndarray):

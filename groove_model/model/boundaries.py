@@ -1,7 +1,7 @@
 r"""Residuals, analytic Jacobians, validity functions and seed points of the regime boundaries.
 
 Each boundary is the zero set of three equations in ``x = (gamma, delta, beta_L, upsilon)``
-(``shared/MODEL.md``, table "The boundaries"). With ``beta_R = pi - 2 gamma - beta_L``,
+(``docs/model.md``, "The boundaries"). With ``beta_R = pi - 2 gamma - beta_L``,
 ``s = sin beta``, ``q = sqrt(s)``, ``n = s q`` (scaled normal force), ``A = cos beta_L + upsilon``,
 ``B = cos beta_R - upsilon``, ``D = cos theta_R - cos theta_L = 2 sin gamma sin delta`` and ``c``
 the compliance ratio, the equations are written multiplied out, with no division by

@@ -187,3 +187,14 @@ def test_no_point_off_the_curve_is_accepted_at_a_cusp():
     assert np.all(nearest <= 1e-6)
     # and the run does not pass the cusp as if nothing happened
     assert curve.status is Status.STEP_TOO_SMALL
+
+
+def test_a_huge_tangent_component_gives_no_zero_tangent():
+    # a given tangent with a tiny component: the bordered solve's null vector is scaled by
+    # 1e170, whose norm overflows a naive sqrt(v . v); the corrector must never report a zero
+    # tangent as a converged point
+    J = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    curve = trace(Problem(lambda x: J @ x, lambda x: J), np.zeros(3), tangent=[1.0, 0.0, 1e-170],
+                  options=Options(max_steps=3))
+    assert np.all(np.isfinite(curve.tangents))
+    assert np.allclose(np.linalg.norm(curve.tangents, axis=1), 1.0)

@@ -1,0 +1,259 @@
+"""Crash safety of ``atomic_write``: writers killed with SIGKILL leave no stale or truncated files.
+
+The writers are real processes: a launcher imports the package once and forks a writer per
+request (a fresh interpreter per kill would spend a second on imports); the test kills them
+with SIGKILL at random moments and reads their exit status back through the launcher.
+"""
+
+import os
+import random
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from groove_model.io.export import atomic_write, remove_stale_temporaries
+
+ROWS = 20_000
+#: the documented temporary name ``.{stem}.partial-{pid}@{owner}.{token}{suffix}``
+TEMPORARY = re.compile(r"\.(?P<stem>.*)\.partial-(?P<pid>[0-9]+)@(?P<owner>[A-Za-z0-9-]+)"
+                       r"\.(?P<token>[0-9a-f]{16})(?P<suffix>\.[^./]*)?")
+
+LAUNCHER = r'''
+import os, sys, time, traceback
+from pathlib import Path
+from groove_model.io.export import atomic_write
+
+rows = int(sys.argv[1])
+body = "i,square\n" + "".join(f"{i},{i * i}\n" for i in range(rows))
+
+
+def write_in_pieces(tmp):
+    # slow, like a figure being drawn: most of a writer's time is spent inside a write
+    with open(tmp, "w") as f:
+        for start in range(0, len(body), 4096):
+            f.write(body[start:start + 4096])
+            f.flush()
+            time.sleep(0.0002)
+
+
+def write_forever(out):
+    for n in range(os.getpid(), 10**9):
+        atomic_write(out / f"data_{n % 3}.csv", write_in_pieces)
+
+
+def write_held(out, release):
+    def held(tmp):
+        Path(tmp).write_text(body[: len(body) // 2])
+        while not release.exists():
+            time.sleep(0.001)
+        Path(tmp).write_text(body)
+    atomic_write(out / "held.csv", held)
+
+
+def fork(target, *args):
+    pid = os.fork()
+    if pid == 0:
+        code = 0
+        try:
+            target(*args)
+        except BaseException:
+            traceback.print_exc()
+            code = 1
+        os._exit(code)
+    return pid
+
+
+print("ready", flush=True)
+for line in sys.stdin:
+    command, *args = line.split()
+    if command == "write":
+        print(fork(write_forever, Path(args[0])), flush=True)
+    elif command == "hold":
+        print(fork(write_held, Path(args[0]), Path(args[1])), flush=True)
+    elif command == "reap":
+        print(os.waitstatus_to_exitcode(os.waitpid(int(args[0]), 0)[1]), flush=True)
+'''
+
+posix_only = pytest.mark.skipif(os.name != "posix", reason="needs fork and SIGKILL")
+
+
+class Launcher:
+    """Drives the launcher process: start writers, reap them and read their exit codes."""
+
+    def __init__(self, directory: Path) -> None:
+        self.log = directory / "launcher-stderr.txt"
+        env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1",
+                   MKL_NUM_THREADS="1", PYTHONWARNINGS="ignore")
+        with open(self.log, "w") as stderr:
+            self.process = subprocess.Popen(
+                [sys.executable, "-c", LAUNCHER, str(ROWS)], stdin=subprocess.PIPE,
+                stdout=subprocess.PIPE, stderr=stderr, text=True, env=env)
+        self.children: set[int] = set()
+        assert self._read() == "ready"
+
+    def _read(self) -> str:
+        line = self.process.stdout.readline()
+        if not line:
+            pytest.fail(f"the launcher ended: {self.log.read_text()}")
+        return line.strip()
+
+    def _ask(self, *words) -> str:
+        self.process.stdin.write(" ".join(str(w) for w in words) + "\n")
+        self.process.stdin.flush()
+        return self._read()
+
+    def start(self, *words) -> int:
+        pid = int(self._ask(*words))
+        self.children.add(pid)
+        return pid
+
+    def reap(self, pid: int) -> int:
+        """Exit code of writer ``pid`` (``-9`` if SIGKILL ended it); waits for it."""
+        self.children.discard(pid)
+        return int(self._ask("reap", pid))
+
+    def kill(self, pid: int) -> int:
+        os.kill(pid, signal.SIGKILL)
+        return self.reap(pid)
+
+    def close(self) -> None:
+        for pid in sorted(self.children):
+            self.kill(pid)
+        self.process.stdin.close()
+        self.process.wait(timeout=30)
+        self.process.stdout.close()
+
+
+@pytest.fixture(scope="module")
+def launcher(tmp_path_factory):
+    launcher = Launcher(tmp_path_factory.mktemp("launcher"))
+    yield launcher
+    launcher.close()
+
+
+def temporaries(directory: Path) -> list[str]:
+    return sorted(name for name in os.listdir(directory) if TEMPORARY.fullmatch(name))
+
+
+def write_rows(tmp) -> None:
+    Path(tmp).write_text("i,square\n" + "".join(f"{i},{i * i}\n" for i in range(ROWS)))
+
+
+def assert_complete(path: Path) -> None:
+    frame = pd.read_csv(path)
+    assert list(frame.columns) == ["i", "square"], path
+    assert len(frame) == ROWS, path
+    assert frame["i"].tolist() == list(range(ROWS)) and (frame["square"] == frame["i"] ** 2).all(), path
+
+
+def size_or_none(path: Path):
+    try:
+        return path.stat().st_size
+    except FileNotFoundError:
+        return None
+
+
+def wait_for_temporary_of(pid: int, directory: Path, min_size: int = 0) -> None:
+    """Wait until writer ``pid`` has a temporary file of ``min_size`` bytes or more."""
+    deadline = time.monotonic() + 30.0
+    while not any(int(TEMPORARY.fullmatch(name)["pid"]) == pid
+                  and (size_or_none(directory / name) or 0) >= min_size
+                  for name in temporaries(directory)):
+        assert time.monotonic() < deadline, f"writer {pid} never wrote a temporary file"
+        time.sleep(0.0005)
+
+
+def dead_pid() -> int:
+    """The pid of a process that has ended (unless the system has reused it since)."""
+    process = subprocess.Popen([sys.executable, "-c", "pass"])
+    process.wait()
+    return process.pid
+
+
+@posix_only
+def test_writers_killed_at_random_moments_leave_no_stale_or_truncated_file(launcher, tmp_path):
+    rng = random.Random(80)
+    live = [launcher.start("write", tmp_path) for _ in range(2)]
+    for _ in range(8):
+        time.sleep(rng.uniform(0.0, 0.03))
+        # the oldest writer dies; the other keeps writing (and cleaning) beside a new one.
+        # A writer whose temporary file a cleaner removed would have failed: exit code 1
+        assert launcher.kill(live.pop(0)) == -signal.SIGKILL
+        live.append(launcher.start("write", tmp_path))
+    time.sleep(rng.uniform(0.0, 0.03))
+    for pid in live:
+        # the last ones die inside a write, so that the final write has files to clean
+        wait_for_temporary_of(pid, tmp_path)
+        assert launcher.kill(pid) == -signal.SIGKILL
+    left = temporaries(tmp_path)
+    assert left
+    assert {TEMPORARY.fullmatch(name)["suffix"] for name in left} == {".csv"}
+
+    atomic_write(tmp_path / "data_0.csv", write_rows)
+
+    assert temporaries(tmp_path) == []
+    finals = set(os.listdir(tmp_path))
+    assert "data_0.csv" in finals and finals <= {"data_0.csv", "data_1.csv", "data_2.csv"}
+    for name in finals:
+        assert_complete(tmp_path / name)
+
+
+@posix_only
+def test_a_live_writers_temporary_file_is_kept(launcher, tmp_path):
+    out, release = tmp_path / "out", tmp_path / "release"
+    out.mkdir()
+    pid = launcher.start("hold", out, release)
+    # inside its write callback: a file removed now would not be created again
+    wait_for_temporary_of(pid, out, min_size=1)
+    held = temporaries(out)
+
+    atomic_write(out / "other.csv", write_rows)  # cleans the directory meanwhile
+
+    assert temporaries(out) == held
+    release.touch()
+    assert launcher.reap(pid) == 0
+    assert sorted(os.listdir(out)) == ["held.csv", "other.csv"]
+    assert_complete(out / "held.csv")
+
+
+def test_only_files_of_gone_writers_of_this_host_are_removed(tmp_path):
+    names = []
+    atomic_write(tmp_path / "probe.csv", lambda tmp: names.append(Path(tmp).name))
+    ours = TEMPORARY.fullmatch(names[0])
+    assert ours is not None and int(ours["pid"]) == os.getpid(), names
+    owner, gone, token = ours["owner"], dead_pid(), "0123456789abcdef"
+    stale = f".data.partial-{gone}@{owner}.{token}.csv"
+    kept_files = [
+        f".data.partial-{gone}@other-host.{token}.csv",  # another host: its pid means nothing here
+        f".data.partial-{os.getpid()}@{owner}.{token}.csv",  # a live writer (this process)
+        ".data-k3j2h1g0.csv",  # what tempfile.mkstemp used to leave
+        ".data.csv",
+        f"data.partial-{gone}@{owner}.{token}.csv",  # not hidden: a user's file
+        f".data.partial-{gone}@{owner}.{token}.csv.bak",
+        "notes.txt",
+    ]
+    for name in [stale, *kept_files]:
+        (tmp_path / name).write_text("x")
+    (tmp_path / f".dir.partial-{gone}@{owner}.{token}").mkdir()
+
+    removed = remove_stale_temporaries(tmp_path)
+
+    assert removed == [tmp_path / stale]
+    assert sorted(os.listdir(tmp_path)) == sorted(
+        [*kept_files, f".dir.partial-{gone}@{owner}.{token}", "probe.csv"])
+
+
+@posix_only
+def test_temporary_file_has_the_permissions_of_an_ordinary_open(tmp_path):
+    umask = os.umask(0o027)
+    try:
+        atomic_write(tmp_path / "x.csv", write_rows)
+    finally:
+        os.umask(umask)
+    assert (tmp_path / "x.csv").stat().st_mode & 0o777 == 0o640
