@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
-if TYPE_CHECKING:  # the curve type is only named in annotations
-    from .result import Curve
+from typing import Any
 
 __all__ = ["CallbackError", "CallbackShapeError", "ContinuationError"]
 
 
 class ContinuationError(RuntimeError):
-    """A continuation run failed; ``curve`` holds the partial :class:`Curve`."""
+    """A continuation run failed; ``curve`` holds the partial :class:`~continuation.Curve`.
 
-    def __init__(self, message: str, curve: Curve | None = None) -> None:
+    (Typed ``Any`` here: the result module imports this one, not the other way round.)
+    """
+
+    def __init__(self, message: str, curve: Any = None) -> None:
         super().__init__(message)
         self.curve = curve
 
