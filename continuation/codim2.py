@@ -53,6 +53,7 @@ from .errors import ContinuationError
 from .events import Event, box_events
 from .family import Family
 from .options import Options
+from .predictor import hermite
 from .problem import Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .tracker import trace
@@ -189,6 +190,25 @@ class Codim2Curve:
         """The codimension-2 points of one kind."""
         kind = Codim2Kind(kind)
         return tuple(point for point in self.points if point.kind is kind)
+
+    def dense(self, per_step: int = 8) -> np.ndarray:
+        """Points on the cubic Hermite arcs between the computed points, for drawing.
+
+        ``per_step`` points per step (the computed points included), not corrected onto the
+        curve: their distance to it is ``O(h^4)`` in the step ``h`` (use :meth:`at` for exact
+        points).
+        """
+        if len(self) < 2:
+            return self.z.copy()
+        rows = []
+        for i in range(len(self) - 1):
+            h = float(self.s[i + 1] - self.s[i])
+            for sigma in np.linspace(0.0, h, per_step, endpoint=False):
+                point, _ = hermite(self.z[i], self.tangents[i], self.z[i + 1],
+                                   self.tangents[i + 1], h, sigma)
+                rows.append(point)
+        rows.append(self.z[-1])
+        return np.array(rows)
 
     def at(self, p: float) -> list[np.ndarray]:
         """Every point of the curve with parameter ``p``, in order along it.
