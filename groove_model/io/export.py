@@ -45,20 +45,22 @@ def atomic_write(path, write) -> Path:
     return path
 
 
-def boundary_file_names(k: float) -> tuple[str, str]:
-    """``boundaries_k{k:g}.csv`` and ``special_points_k{k:g}.csv``."""
-    return f"boundaries_k{k:g}.csv", f"special_points_k{k:g}.csv"
+def boundary_file_names(k: float, suffix: str = "") -> tuple[str, str]:
+    """``boundaries_k{k:g}{suffix}.csv`` and ``special_points_k{k:g}{suffix}.csv``."""
+    return f"boundaries_k{k:g}{suffix}.csv", f"special_points_k{k:g}{suffix}.csv"
 
 
-def write_boundary_set(boundary_set: BoundarySet, directory) -> tuple[Path, Path]:
+def write_boundary_set(boundary_set: BoundarySet, directory,
+                       suffix: str = "") -> tuple[Path, Path]:
     """Write the pair of CSV files of one ``k`` into ``directory`` (created if needed).
 
     Floats are written with 17 significant digits, so a row recomputed from its own columns
-    reproduces the traced point exactly.
+    reproduces the traced point exactly. ``suffix`` ends the file names (e.g. ``"_nu0.3"`` for
+    another compliance than the paper's).
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    points_name, specials_name = boundary_file_names(boundary_set.k)
+    points_name, specials_name = boundary_file_names(boundary_set.k, suffix)
     points = boundary_set.to_frame()
     specials = boundary_set.special_points_frame()[list(SPECIAL_POINT_COLUMNS)]
     paths = []
