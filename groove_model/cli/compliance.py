@@ -53,7 +53,7 @@ def run(args) -> int:
     # Imported here, not at the top: the atlases load the engine, scipy and pandas.
     from ..analysis.compliance import compliance_study
     from ..io.atlas import write_atlas
-    from ..io.export import atomic_write
+    from ..io.atomic import atomic_write
 
     out = output_directory(args.out)
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))

@@ -12,28 +12,47 @@ Floats are written with 17 significant digits.
 
 from __future__ import annotations
 
+import csv
+import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import pandas as pd
-
-from ..tracing.atlas import ATLAS_COLUMNS, Atlas
+from ..tracing.atlas import ATLAS_COLUMNS, THRESHOLD_COLUMNS, Atlas
 from ..tracing.topology import format_table, thresholds_from_atlas
-from .export import atomic_write
+from .atomic import atomic_write
+
+if TYPE_CHECKING:  # reading back is the only use of pandas here
+    import pandas as pd
 
 __all__ = ["atlas_report", "read_atlas_csv", "write_atlas"]
 
 
-def _csv(frame: pd.DataFrame, path: Path) -> Path:
-    return atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False, float_format="%.17g"))
+def _cell(value) -> str:
+    """A CSV cell as pandas writes it with ``float_format="%.17g"`` (NaN empty)."""
+    if isinstance(value, bool):
+        return str(value)
+    if isinstance(value, float):
+        return "" if math.isnan(value) else f"{value:.17g}"
+    return str(value)
+
+
+def _csv(columns, rows, path: Path) -> Path:
+    def write(tmp):
+        with open(tmp, "w", newline="", encoding="utf-8") as handle:
+            writer = csv.writer(handle, lineterminator="\n")
+            writer.writerow(columns)
+            writer.writerows([_cell(v) for v in row] for row in rows)
+    return atomic_write(path, write)
 
 
 def write_atlas(atlas: Atlas, directory, stem: str = "atlas") -> list[Path]:
     """Write the CSV files and the report of ``atlas`` into ``directory`` (created if needed)."""
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    paths = [_csv(atlas.curve_frame(name), directory / f"{stem}_{name}.csv")
+    paths = [_csv(ATLAS_COLUMNS, atlas.curve_table(name), directory / f"{stem}_{name}.csv")
              for name in atlas.curves]
-    paths.append(_csv(atlas.thresholds_frame(), directory / f"{stem}_thresholds.csv"))
+    paths.append(_csv(THRESHOLD_COLUMNS, atlas.thresholds_table(),
+                      directory / f"{stem}_thresholds.csv"))
     report = atlas_report(atlas)
     paths.append(atomic_write(directory / f"{stem}.md",
                               lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
@@ -93,6 +112,8 @@ def read_atlas_csv(path) -> pd.DataFrame:
     ValueError
         If a column of :data:`~groove_model.tracing.atlas.ATLAS_COLUMNS` is missing.
     """
+    import pandas as pd  # reading a table back is the only use of pandas here
+
     frame = pd.read_csv(path, keep_default_na=False, na_values={"": []},
                         dtype={"threshold": str, "curve": str})
     missing = [c for c in ATLAS_COLUMNS if c not in frame.columns]

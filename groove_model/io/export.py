@@ -6,8 +6,6 @@ A file is written to a temporary name in its target directory and moved into pla
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -15,34 +13,9 @@ import pandas as pd
 
 from ..model.boundaries import BOUNDARY_NAMES
 from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
+from .atomic import atomic_write
 
 __all__ = ["atomic_write", "boundary_file_names", "read_boundaries_csv", "write_boundary_set"]
-
-
-def atomic_write(path, write) -> Path:
-    """Call ``write(tmp_path)`` and move the result to ``path`` atomically.
-
-    Parameters
-    ----------
-    path : path-like
-        Target file; its directory must exist.
-    write : callable
-        ``write(tmp_path)`` creates the file at ``tmp_path`` (same directory, same suffix).
-    """
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}-", suffix=path.suffix, dir=path.parent)
-    os.close(fd)
-    try:
-        write(tmp)
-        # mkstemp creates 0600; give the file the permissions an ordinary open() would.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
 
 
 def boundary_file_names(k: float, suffix: str = "") -> tuple[str, str]:

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
-from ..io.export import atomic_write
+from ..io.atomic import atomic_write
 from ..tracing.atlas import Atlas
 
 __all__ = ["CURVE_COLOURS", "draw_atlas", "save_atlas_figure", "save_compliance_figure"]

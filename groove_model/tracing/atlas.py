@@ -46,8 +46,9 @@ import math
 import time
 from dataclasses import dataclass, field
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
 
 from continuation import Codim2Curve, Codim2Kind, Event, Options, follow_event, follow_fold
 
@@ -57,7 +58,7 @@ from .curves import PointKind
 from .families import Axis, BoundaryFamily, domain_events, fold_points, junction_event, \
     junction_point
 
-__all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
+__all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "THRESHOLD_COLUMNS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
            "POISSON_OPTIONS",
            "Atlas", "AtlasCurve", "Threshold", "trace_atlas", "trace_atlas_in_poisson"]
 
@@ -81,6 +82,12 @@ COINCIDENT = 1e-9
 
 ATLAS_COLUMNS = ("curve", "k", "nu", "compliance", "gamma", "delta", "beta_L", "upsilon",
                  "physical", "threshold")
+
+THRESHOLD_COLUMNS = ("threshold", "axis", "value", "fixed", "gamma", "delta", "beta_L",
+                     "upsilon", "curve", "what", "equations", "residual", "also")
+
+if TYPE_CHECKING:  # the tables are made with pandas only on request
+    import pandas as pd
 
 _FOLD_NAMES = {0: "gamma", 1: "delta"}
 _BOUNDARIES = ("dr_limit", "rs_no_roll", "dr_no_roll")
@@ -262,34 +269,39 @@ class Atlas:
         raise KeyError(f"no threshold {name!r} in the atlas; it has "
                        f"{', '.join(t.name for t in self.thresholds) or 'none'}")
 
-    def curve_frame(self, name: str) -> pd.DataFrame:
-        """The rows of one curve (columns :data:`ATLAS_COLUMNS`)."""
+    def curve_table(self, name: str) -> list[tuple]:
+        """The rows of one curve, in the order of :data:`ATLAS_COLUMNS`."""
         curve = self.curves[name]
-        k, c = zip(*(self.axis.friction_and_ratio(p) for p in curve.p)) if len(curve.p) \
-            else ((), ())
-        marks = np.full(len(curve.p), "", dtype=object)
+        marks = [""] * len(curve.p)
         for threshold in self.thresholds:
             if threshold.curve == name:
-                row = int(np.argmin(np.abs(curve.p - self.axis.to_p(threshold.value))))
-                marks[row] = threshold.name
-        nu = curve.p if self.axis.name == "nu" else np.full(len(curve.p), _poisson(self.axis))
-        return pd.DataFrame({"curve": name, "k": k, "nu": nu, "compliance": c,
-                             "gamma": curve.x[:, 0], "delta": curve.x[:, 1],
-                             "beta_L": curve.x[:, 2], "upsilon": curve.x[:, 3],
-                             "physical": curve.physical, "threshold": marks},
-                            columns=list(ATLAS_COLUMNS))
+                marks[int(np.argmin(np.abs(curve.p - self.axis.to_p(threshold.value))))] = \
+                    threshold.name
+        nu = _poisson(self.axis)
+        rows = []
+        for i, p in enumerate(curve.p):
+            k, c = self.axis.friction_and_ratio(p)
+            rows.append((name, k, float(p) if self.axis.name == "nu" else nu, c,
+                         *(float(v) for v in curve.x[i]), bool(curve.physical[i]), marks[i]))
+        return rows
+
+    def thresholds_table(self) -> list[tuple]:
+        """The thresholds, in the order of :data:`THRESHOLD_COLUMNS`."""
+        return [(t.name, self.axis.name, t.value, self.axis.fixed, *(float(v) for v in t.x),
+                 t.curve, t.what, "; ".join(t.equations), t.residual, "; ".join(t.also))
+                for t in self.thresholds]
+
+    def curve_frame(self, name: str) -> pd.DataFrame:
+        """:meth:`curve_table` as a DataFrame."""
+        import pandas as pd  # only the tables need it: `groove atlas` writes without it
+
+        return pd.DataFrame(self.curve_table(name), columns=list(ATLAS_COLUMNS))
 
     def thresholds_frame(self) -> pd.DataFrame:
-        """The thresholds: name, value, the point, what happens, equations, residual."""
-        rows = [dict(threshold=t.name, axis=self.axis.name, value=t.value,
-                     fixed=self.axis.fixed, gamma=t.x[0], delta=t.x[1], beta_L=t.x[2],
-                     upsilon=t.x[3], curve=t.curve, what=t.what,
-                     equations="; ".join(t.equations), residual=t.residual,
-                     also="; ".join(t.also))
-                for t in self.thresholds]
-        return pd.DataFrame(rows, columns=["threshold", "axis", "value", "fixed", "gamma",
-                                           "delta", "beta_L", "upsilon", "curve", "what",
-                                           "equations", "residual", "also"])
+        """:meth:`thresholds_table` as a DataFrame."""
+        import pandas as pd  # only the tables need it: `groove atlas` writes without it
+
+        return pd.DataFrame(self.thresholds_table(), columns=list(THRESHOLD_COLUMNS))
 
 
 def _poisson(axis: Axis) -> float:
