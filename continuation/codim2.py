@@ -34,8 +34,10 @@ The cusp normal form ``x^3 - mu x - lambda = 0``, ``x = (lambda, u)``, ``p = mu`
 ...               lambda x, mu: np.array([-x[1]]), names=("lambda", "u"), parameter="mu")
 >>> folds = follow_fold(cusp, [-2.0, 1.0], p=3.0, coordinate=0, direction=-1,
 ...                     parameter_range=(-1.0, 3.0))
->>> [point.kind.value for point in folds.points]
-['cusp']
+>>> [point.kind.value for point in folds.points]   # the cusp, then the end at mu = 3
+['cusp', 'event']
+>>> bool(abs(folds.special("cusp")[0].z).max() < 1e-10)
+True
 """
 
 from __future__ import annotations

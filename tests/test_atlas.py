@@ -2,8 +2,10 @@
 thresholds against closed forms and against a bisection on the per-k topology."""
 
 import math
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from groove_model.model.parameters import Compliance, Parameters
@@ -12,6 +14,7 @@ from groove_model.tracing.atlas import ATLAS_COLUMNS, trace_atlas, trace_atlas_i
 from groove_model.tracing.topology import thresholds
 
 SQRT2 = math.sqrt(2.0)
+RESULTS = Path(__file__).resolve().parents[1] / "results"
 #: atlas curve -> (boundary, kind) of the tracer's special point
 TRACED = {"junction": ("dr_limit", "junction"),
           "dr_limit_fold_delta": ("dr_limit", "fold_delta"),
@@ -152,3 +155,14 @@ def test_the_tracer_checks_the_order_of_junction_and_maximum(atlas, offset):
         inner = [p.kind.value for p in traced.curves["dr_limit"].special_points
                  if p.kind.value in order]
         assert tuple(inner) == order
+
+
+def test_committed_atlas_results_are_reproduced(atlas):
+    for name in TRACED:
+        old = pd.read_csv(RESULTS / f"atlas_{name}.csv", keep_default_na=False)
+        new = atlas.curve_frame(name)
+        assert list(old.columns) == list(new.columns) and len(old) == len(new), name
+        for column in ("k", "gamma", "delta", "beta_L", "upsilon"):
+            assert np.allclose(new[column], old[column], rtol=1e-9, atol=1e-11), column
+    old = pd.read_csv(RESULTS / "atlas_thresholds.csv")
+    assert np.allclose(old["value"], [t.value for t in atlas.thresholds], rtol=1e-12)

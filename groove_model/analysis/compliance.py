@@ -104,7 +104,7 @@ class ComplianceStudy:
         lines = ["# The atlas for Mindlin's compliance c = 2 (1 - nu)/(2 - nu)", "",
                  "Poisson ratios " + ", ".join(f"nu = {nu:g} (c = {c:.6g})"
                                                for nu, c in ratios.items())
-                 + f"; k in [{low:g}, {high:g}]; computed in {self.seconds:.1f} s.", ""]
+                 + f"; k in [{low:g}, {high:g}].", ""]
         lines += _threshold_lines(self, ratios)
         same = self.same_topology_in_k
         lines += ["", "## Topology in each range of k", "",

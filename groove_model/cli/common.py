@@ -3,6 +3,14 @@
 Exit codes: 0 success, 1 a computation failed (e.g. a boundary could not be traced),
 2 bad input (argument out of range, unreadable file); a message for bad input names the
 quantity, its value and the allowed range.
+
+The contact's compliance is one helper for every command that computes states: a command
+adds ``--compliance RATIO`` and ``--poisson NU`` with one line in its ``add_parser``,
+``add_compliance_options(p)``, and reads them in ``run`` with ``compliance_from(args)`` (a
+:class:`~groove_model.model.parameters.Compliance`, passed as ``Parameters(k, compliance)``);
+``compliance_label(compliance)`` ends its file names (``""`` for the paper's law, ``_nu0.3``,
+``_c0.8``). ``groove trace``, ``map``, ``solve`` and ``atlas`` do so; a sweep over ``k`` adds
+them the same way.
 """
 
 from __future__ import annotations

@@ -84,6 +84,7 @@ def run(args) -> int:
 
         paths += save_compliance_figure(study.in_k, study.in_nu, out / "compliance")
     print(report)
+    print(f"computed in {study.seconds:.1f} s")
     for path in paths:
         print(f"wrote {path}")
     return EXIT_OK

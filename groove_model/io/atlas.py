@@ -71,8 +71,8 @@ def atlas_report(atlas: Atlas) -> str:
     ``k``) the topology of each range."""
     symbol = "k" if atlas.axis.name == "k" else "nu"
     lines = [f"# Atlas of the special points: {_range_text(atlas)}", "",
-             f"Computed in {atlas.seconds:.2f} s; status: "
-             + ("ok" if atlas.ok else "FAILED: " + "; ".join(atlas.failures)) + ".", "",
+             "Status: " + ("ok" if atlas.ok else "FAILED: " + "; ".join(atlas.failures))
+             + ".", "",
              "| curve | rows | boundary | from | to |", "|---|---:|---|---:|---:|"]
     for name, curve in atlas.curves.items():
         values = curve.values

@@ -13,6 +13,7 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
 
 from ..io.atomic import atomic_write
@@ -65,10 +66,11 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
             if ax is axes[0]:
                 handles.append(line)
     if thresholds:
-        for t in atlas.thresholds:
+        for j, t in enumerate(atlas.thresholds):
             for ax in axes:
                 ax.axvline(t.value, color="0.5", lw=0.8, ls=linestyle, zorder=0)
-            axes[0].annotate(f"{t.name} = {t.value:.6g}", (t.value, 1.0),
+            # staggered, so that the labels of neighbouring thresholds do not overlap
+            axes[0].annotate(f"{t.name} = {t.value:.6g}", (t.value, 1.0 - 0.3 * (j % 2)),
                              xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
                              va="top", ha="right", color="0.3")
     for ax, (_, ylabel, column) in zip(axes, _PANELS):
@@ -102,7 +104,7 @@ def save_atlas_figure(atlas: Atlas, stem, formats=("png",), title: str | None = 
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.08, top=0.93, wspace=0.22, hspace=0.08)
     axes = fig.subplots(2, 2, sharex=True).ravel()
     handles = draw_atlas(axes, atlas)
-    axes[0].legend(handles=handles, fontsize=7, loc="lower left")
+    axes[0].legend(handles=handles, fontsize=7, loc="lower right")
     fig.suptitle(title or _default_title(atlas), fontsize=10)
     return _save(fig, stem, formats)
 
@@ -122,40 +124,41 @@ def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
     fig = Figure(figsize=(11.0, 8.0))
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.07, top=0.92, wspace=0.2, hspace=0.25)
     grid = fig.subplots(2, 2)
+    styles = []
     for j, (nu, atlas) in enumerate(in_k.items()):
         style = _LINESTYLES[j % len(_LINESTYLES)]
-        handles = []
+        styles.append(Line2D([], [], color="0.2", ls=style, label=f"\u03bd = {nu:g}"))
         for ax, column in zip(grid[0], (0, 1)):
             for i, (name, curve) in enumerate(atlas.curves.items()):
-                line, = ax.plot(curve.values, curve.x[:, column], ls=style,
-                                color=_colour(name, i), lw=1.2,
-                                label=f"{_LABELS.get(name, name)}, nu = {nu:g}")
-                handles.append(line)
+                values, x = curve.dense(6)
+                ax.plot(values, x[:, column], ls=style, color=_colour(name, i), lw=1.2,
+                        label=_LABELS.get(name, name) if j == 0 else None)
             for t in atlas.thresholds:
                 ax.axvline(t.value, color="0.5", lw=0.7, ls=style, zorder=0)
-            ax.set_xscale("log")
-            ax.set_xlabel("friction coefficient k")
-            ax.set_ylabel(_PANELS[column][1])
-            ax.grid(True, lw=0.3, alpha=0.5)
-        if j == 0:
-            grid[0][0].legend(fontsize=6, loc="lower left", ncol=1)
+    for ax, column in zip(grid[0], (0, 1)):
+        ax.set_xscale("log")
+        ax.xaxis.set_major_formatter(FuncFormatter(_powers_of_ten))
+        ax.set_xlim(1e-2, 1e4)
+        ax.set_xlabel("friction coefficient k (1e-2 to 1e4 shown)")
+        ax.set_ylabel(_PANELS[column][1])
+        ax.grid(True, lw=0.3, alpha=0.5)
+    grid[0][0].legend(fontsize=7, loc="upper left")
+    grid[0][1].legend(handles=styles, fontsize=7, loc="upper left")
     for ax, (k, atlas) in zip(grid[1], in_nu.items()):
         for i, (name, curve) in enumerate(atlas.curves.items()):
-            ax.plot(curve.values, curve.x[:, 0], color=_colour(name, i), lw=1.4,
-                    label=f"{_LABELS.get(name, name)}: gamma")
-            ax.plot(curve.values, curve.x[:, 1], color=_colour(name, i), lw=1.4, ls="--",
-                    label=f"{_LABELS.get(name, name)}: delta")
+            values, x = curve.dense(6)
+            ax.plot(values, x[:, 0], color=_colour(name, i), lw=1.4)
+            ax.plot(values, x[:, 1], color=_colour(name, i), lw=1.4, ls="--")
         for t in atlas.thresholds:
             ax.axvline(t.value, color="0.5", lw=0.8)
             ax.annotate(f"{t.name} = {t.value:.4g}", (t.value, 0.02),
                         xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
                         ha="right", color="0.3")
         ax.set_xlabel("Poisson ratio \u03bd")
-        ax.set_ylabel("gamma (solid), delta (dashed) [rad]")
+        ax.set_ylabel("\u03b3 (solid), \u03b4 (dashed) [rad]")
         ax.set_title(f"k = {k:g}", fontsize=9)
         ax.grid(True, lw=0.3, alpha=0.5)
     fig.suptitle("Special points for Mindlin's compliance c = 2(1 - \u03bd)/(2 - \u03bd): "
                  "in k for \u03bd = " + ", ".join(f"{nu:g}" for nu in in_k)
-                 + " (solid, dashed, dotted; thresholds as vertical lines), and in "
-                 "\u03bd at fixed k", fontsize=9)
+                 + " (thresholds as vertical lines), and in \u03bd at fixed k", fontsize=9)
     return _save(fig, stem, formats)

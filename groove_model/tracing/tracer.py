@@ -302,7 +302,13 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     -------
     BoundarySet
         ``ok`` only if every boundary was traced to its expected end with its expected
-        junctions and folds (:func:`groove_model.topology.expected_topology`).
+        junctions and folds, in their expected order
+        (:func:`groove_model.tracing.topology.expected_topology`).
+
+    Notes
+    -----
+    The expected topology comes from the atlas of special points; its thresholds are computed
+    on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
     params = Parameters.coerce(k)
     options = options or DEFAULT_OPTIONS
