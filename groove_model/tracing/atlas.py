@@ -55,8 +55,7 @@ from continuation import Codim2Curve, Codim2Kind, Event, Options, follow_event, 
 from ..model.boundaries import Condition
 from ..model.parameters import Compliance, check_friction
 from .curves import PointKind
-from .families import Axis, BoundaryFamily, domain_events, fold_points, junction_event, \
-    junction_point
+from .families import Axis, BoundaryFamily, domain_events, junction_event, special_points
 
 __all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "THRESHOLD_COLUMNS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
            "POISSON_OPTIONS",
@@ -378,17 +377,16 @@ class _Start:
 def _starts(families: dict, p: float) -> list[_Start]:
     """The special points at ``p``: each boundary traced there, its folds and the junction."""
     starts = []
-    junction_family = families["dr_no_roll"]
-    junction = junction_point(junction_family, p)
-    if junction is not None:
-        starts.append(_Start("junction", "dr_limit", PointKind.JUNCTION, junction_family,
-                             junction, p, None))
     for boundary in _BOUNDARIES:
         family = families[boundary]
+        junction, folds = special_points(family, p)
+        if junction is not None:
+            starts.append(_Start("junction", "dr_limit", PointKind.JUNCTION, family, junction, p,
+                                 None))
+        if boundary == "dr_no_roll":  # its physical part only: branch point to junction
+            folds = [f for f in folds if family.physical(np.append(f.x, p))]
         for coordinate, name in _FOLD_NAMES.items():
-            points = fold_points(family, p, coordinate)
-            if boundary == "dr_no_roll":  # its physical part only: branch point to junction
-                points = [f for f in points if family.physical(np.append(f.x, p))]
+            points = [f for f in folds if f.coordinate == coordinate]
             kind = PointKind.FOLD_GAMMA if coordinate == 0 else PointKind.FOLD_DELTA
             for j, point in enumerate(points):
                 label = f"{boundary}_fold_{name}" + (f"_{j + 1}" if j else "")

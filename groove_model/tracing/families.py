@@ -35,8 +35,8 @@ from continuation import Curve, Event, Family, Options, Problem, SpecialKind, tr
 from ..model.boundaries import BoundarySystem, Condition, dr_no_roll_branch_point, limit_seed
 from ..model.parameters import Compliance, Parameters
 
-__all__ = ["AXES", "START_OPTIONS", "Axis", "BoundaryFamily", "domain_events", "fold_points",
-           "junction_event", "junction_point"]
+__all__ = ["AXES", "START_OPTIONS", "Axis", "BoundaryFamily", "domain_events", "junction_event",
+           "special_points"]
 
 AXES = ("k", "nu")
 
@@ -232,37 +232,44 @@ def _at_p(events, p: float, family: Family) -> list[Event]:
     return [family.event_at(event, p) for event in events]
 
 
-def junction_point(family: BoundaryFamily, p: float):
-    """The junction at ``p``: ``dr_no_roll`` traced from its branch point to ``T/N_L = k``.
+def special_points(family: BoundaryFamily, p: float):
+    """The special points of one boundary at ``p``: ``(junction, folds)``, engine special points.
 
-    Returns the engine's special point (chart coordinates of ``family``, which must be
-    ``dr_no_roll``), or ``None`` if ``dr_no_roll`` reaches the corner first (``k <= c sqrt 2``).
+    The boundary is traced once at ``p``, as the tracer does: ``dr_limit`` and ``rs_no_roll``
+    from ``(arctan(k/c), 0)``, ``dr_no_roll`` from its branch point to the junction, the event
+    ``T/N_L = k`` (``junction`` is ``None`` for the others, and for ``dr_no_roll`` when it reaches
+    the corner first: ``k <= c sqrt 2``, no physical part and no folds reported). ``folds`` are
+    its turning points in gamma and delta; one at an end or at the corner ``w = 0`` (where gamma
+    and delta are stationary in the chart) is none.
+
+    Raises
+    ------
+    RuntimeError
+        If the boundary cannot be traced at ``p``.
     """
-    event = junction_event(family.axis)
-    terminal = Event(event.name, event.function, terminal=True)
-    events = _at_p([terminal, *domain_events(family)], p, family.family)
-    curve = _start_trace(family, p, family.from_x(dr_no_roll_branch_point(), p), events)
-    found = [point for point in curve.special("event") if point.event == 0 and point.index > 0]
-    return found[0] if found else None
-
-
-def fold_points(family: BoundaryFamily, p: float, coordinate: int) -> list:
-    """The folds of ``coordinate`` (0 gamma, 1 delta) of the boundary traced at ``p`` from
-    ``(arctan(k/c), 0)`` (``dr_limit``, ``rs_no_roll``) or the branch point (``dr_no_roll``),
-    as the engine's special points; a fold at an end or at the corner ``w = 0`` (where gamma
-    and delta are stationary in the chart) is none."""
     params = family.axis.params(p)
-    start = dr_no_roll_branch_point() if family.boundary == "dr_no_roll" else limit_seed(params)
     events = domain_events(family)
+    if family.boundary == "dr_no_roll":
+        start = dr_no_roll_branch_point()
+        event = junction_event(family.axis)
+        events.insert(0, Event(event.name, event.function, terminal=True))
+    else:
+        start = limit_seed(params)
     if family.scaled:
         floor = min(GAMMA_MIN, 1e-3 / family.scale(p))
         events.append(Event("gamma = gamma_min", lambda z: z[0] - floor, -1, True, _unit(0)))
     curve = _start_trace(family, p, family.from_x(start, p), _at_p(events, p, family.family),
-                         (coordinate,))
+                         (0, 1))
     if not curve.ok:
         raise RuntimeError(f"{family.boundary} at {family.axis.parameter} = {p!r} could not be "
-                           f"traced to find its folds: {curve.message}")
+                           f"traced to find its special points: {curve.message}")
+    junction = None
+    if family.boundary == "dr_no_roll":
+        ends = [point for point in curve.special("event") if point.event == 0 and point.index > 0]
+        if not ends:
+            return None, []
+        junction = ends[0]
     last = len(curve) - 1
-    return [point for point in curve.special(SpecialKind.FOLD)
-            if point.coordinate == coordinate and 0 < point.index < last
-            and abs(point.x[2]) > 1e-9]
+    folds = [point for point in curve.special(SpecialKind.FOLD)
+             if 0 < point.index < last and abs(point.x[2]) > 1e-9]
+    return junction, folds
