@@ -58,7 +58,7 @@ def _median_time(function, repeats: int) -> tuple[float, float]:
     return statistics.median(walls), statistics.median(cpus)
 
 
-def _command_time(repeats: int) -> tuple[float, float]:
+def _command_time(repeats: int, *extra: str) -> tuple[float, float]:
     """Median wall time and median CPU time (user + system) of the ``groove atlas`` command.
 
     The CPU time is what the wall time would be on an idle core; on a shared machine the wall
@@ -72,7 +72,7 @@ def _command_time(repeats: int) -> tuple[float, float]:
             before = resource.getrusage(resource.RUSAGE_CHILDREN)
             start = time.perf_counter()
             subprocess.run([*argv, "atlas", "--k-min", f"{K_RANGE[0]:g}", "--k-max",
-                            f"{K_RANGE[1]:g}", "--out", out], check=True,
+                            f"{K_RANGE[1]:g}", "--out", out, *extra], check=True,
                            stdout=subprocess.DEVNULL)
             walls.append(time.perf_counter() - start)
             after = resource.getrusage(resource.RUSAGE_CHILDREN)
@@ -119,6 +119,7 @@ def run_atlas_benchmark(sweep: int = 300, repeats: int = 5) -> dict:
     atlas_s, atlas_cpu = _median_time(lambda: trace_atlas(K_RANGE), repeats)
     atlas = trace_atlas(K_RANGE)
     command_s, command_cpu = _command_time(repeats)
+    bare_s, bare_cpu = _command_time(repeats, "--no-figure")
     ks = np.geomspace(*K_RANGE, sweep)
     trace_boundaries(1.0)  # warm-up: the tracer's thresholds, computed once per compliance
     one_by_one_s, one_by_one_cpu, sets = _one_by_one(ks)
@@ -126,11 +127,14 @@ def run_atlas_benchmark(sweep: int = 300, repeats: int = 5) -> dict:
         "k_range": list(K_RANGE), "sweep": sweep, "repeats": repeats,
         "atlas_s": atlas_s, "atlas_cpu_s": atlas_cpu,
         "groove_atlas_s": command_s, "groove_atlas_cpu_s": command_cpu,
+        "groove_atlas_no_figure_s": bare_s, "groove_atlas_no_figure_cpu_s": bare_cpu,
         "one_by_one_s": one_by_one_s, "one_by_one_cpu_s": one_by_one_cpu,
         "ratio_one_by_one_over_atlas": one_by_one_s / atlas_s,
         "ratio_one_by_one_over_atlas_cpu": one_by_one_cpu / atlas_cpu,
         "ratio_one_by_one_over_groove_atlas": one_by_one_s / command_s,
         "ratio_one_by_one_over_groove_atlas_cpu": one_by_one_cpu / command_cpu,
+        "ratio_one_by_one_over_groove_atlas_no_figure": one_by_one_s / bare_s,
+        "ratio_one_by_one_over_groove_atlas_no_figure_cpu": one_by_one_cpu / bare_cpu,
         "atlas_points": sum(len(c.p) for c in atlas.curves.values()),
         "traced_all_ok": all(s.ok for s in sets),
         "max_difference_atlas_vs_traced": _agreement(atlas, ks, sets),
@@ -153,7 +157,9 @@ def main(argv=None) -> int:
           "|---|---:|---:|---:|---:|")
     rows = (("atlas, k in [1e-4, 1e6] (in-process)", "atlas", "ratio_one_by_one_over_atlas"),
             ("groove atlas (command: interpreter, imports, files, PNG)", "groove_atlas",
-             "ratio_one_by_one_over_groove_atlas"))
+             "ratio_one_by_one_over_groove_atlas"),
+            ("groove atlas --no-figure", "groove_atlas_no_figure",
+             "ratio_one_by_one_over_groove_atlas_no_figure"))
     for label, key, ratio in rows:
         print(f"| {label} | {result[key + '_s']:.3f} | {result[key + '_cpu_s']:.3f} | "
               f"{result[ratio]:.1f} | {result[ratio + '_cpu']:.1f} |")
