@@ -148,7 +148,8 @@ class Codim2Curve:
     points : tuple of Codim2Point
         Codimension-2 points in order along the curve.
     status : continuation.Status
-        How the last piece ended (or the first piece that failed).
+        How the last piece ended (or the first piece that failed); ``MAX_STEPS`` if the
+        borders were renewed :data:`MAX_PIECES` times.
     message : str
     equations : tuple of str
         The curve's defining equations in words.
@@ -354,8 +355,7 @@ def _options(options: Options | None, n2: int) -> Options:
     if not isinstance(options, Options):
         raise TypeError(f"options must be an Options, got {type(options).__name__}")
     folds = tuple(dict.fromkeys((*options.fold_coordinates, n2 - 1)))
-    return dataclasses.replace(options, fold_coordinates=folds, raise_on_failure=False,
-                               detect_closed=False)
+    return dataclasses.replace(options, fold_coordinates=folds, raise_on_failure=False)
 
 
 def _direction(direction, n2: int):
@@ -422,12 +422,17 @@ def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Cur
         offset_s += float(curve.s[-1]) if len(curve) else 0.0
         offset_i += len(curve) - 1 if len(curve) else 0
     last = next((c for c in pieces if c.status.failed), pieces[-1])
-    message = last.message
-    if len(pieces) >= MAX_PIECES and last.status is Status.TERMINAL_EVENT:
-        message = f"{message}; stopped after {MAX_PIECES} renewals of the fold test's borders"
+    status, message = last.status, last.message
+    ended = [p for p in last.special("event") if p.index == len(last) - 1]
+    if (len(pieces) >= MAX_PIECES and status is Status.TERMINAL_EVENT and ended
+            and ended[-1].event >= len(events)):
+        # stopped for renewing the borders once more, not at an end of the curve
+        status = Status.MAX_STEPS
+        message = (f"{Status.MAX_STEPS.value}: stopped after {MAX_PIECES} renewals of the "
+                   "fold test's borders")
     return Codim2Curve(
         what=what, z=np.concatenate(z), s=np.concatenate(s), tangents=np.concatenate(tangents),
-        residuals=np.concatenate(residuals), points=tuple(points), status=last.status,
+        residuals=np.concatenate(residuals), points=tuple(points), status=status,
         message=message, equations=systems[0].equations(names), pieces=tuple(pieces),
         residual_evals=sum(c.residual_evals for c in pieces),
         jacobian_evals=sum(c.jacobian_evals for c in pieces),

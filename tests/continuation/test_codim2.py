@@ -193,3 +193,14 @@ def test_bad_arguments_name_the_quantity():
         follow_event(family, "u", [0.0, 0.0], p=0.0)
     with pytest.raises(TypeError, match="Family.residual must be callable"):
         Family(None)
+
+
+def test_a_curve_stopped_by_the_limit_of_renewals_says_so(monkeypatch):
+    from continuation import Status, codim2
+
+    monkeypatch.setattr(codim2, "MAX_PIECES", 2)
+    u = 1.0 / math.sqrt(3.0)
+    folds = follow_fold(rotating_family(), [u ** 3 - u, u, 0.0], p=0.0, coordinate=0,
+                        options=OPTIONS, parameter_range=(-1.0, 4.0))
+    assert len(folds.pieces) == 2 and folds.status is Status.MAX_STEPS
+    assert "stopped after 2 renewals" in folds.message
