@@ -92,3 +92,14 @@ def test_solve_with_a_poisson_ratio_uses_mindlins_compliance(capsys):
     out = json.loads(capsys.readouterr().out)
     # on delta = 0 the symmetric state has T/N = c tan gamma
     assert out["T_over_N_L"] == pytest.approx(2.0 / 3.0 * math.tan(0.3), rel=1e-12)
+
+
+def test_reproduce_runs_the_atlas_and_the_compliance_study(tmp_path):
+    from groove_model.cli.main import build_parser
+    from groove_model.cli.reproduce import steps
+
+    commands = [argv[0] for argv in steps(tmp_path)]
+    assert commands == ["trace", "map", "map", "atlas", "compliance", "audit"]
+    parser = build_parser()
+    for argv in steps(tmp_path):
+        assert callable(parser.parse_args(argv).run)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -88,11 +89,14 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
 
 
 def _save(fig: Figure, stem, formats) -> list[Path]:
+    """Write ``stem.<format>`` for each format; SVG deterministic (fixed hash salt, no date)."""
     stem = Path(stem)
     paths = []
     for fmt in formats:
         path = stem.with_name(f"{stem.name}.{fmt}")
-        paths.append(atomic_write(path, lambda tmp, f=fmt: fig.savefig(tmp, format=f, dpi=120)))
+        with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+            paths.append(atomic_write(path, lambda tmp, f=fmt: fig.savefig(
+                tmp, format=f, dpi=120, metadata={"Date": None} if f == "svg" else None)))
     return paths
 
 

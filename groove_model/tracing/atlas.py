@@ -445,8 +445,12 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
             followed.append((start, trace))
             if not trace.ok:
                 failures.append(f"{start.name}: {trace.message}")
+    # a fixed order: the junction, then the folds by boundary and coordinate
+    order = sorted(starts.items(), key=lambda item: (
+        item[1].kind is not PointKind.JUNCTION, _BOUNDARIES.index(item[1].boundary),
+        item[1].coordinate or 0, item[0]))
     curves = {name: _curve(start, [t for s, t in followed if s is start])
-              for name, start in starts.items()}
+              for name, start in order}
     thresholds = [t for start, trace in followed
                   for t in _thresholds(start, trace, len(_events(start)))]
     thresholds.sort(key=lambda t: t.value)
