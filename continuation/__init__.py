@@ -2,7 +2,7 @@
 
 The engine follows a solution curve through folds in any coordinate, locates
 events, folds and simple branch points exactly, switches branches and closes
-loops (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
+loops, and follows folds and event points in a second parameter (:mod:`.codim2`) (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
 Methods*, SIAM 2003; H. B. Keller, 1977). It imports numpy and scipy only.
 
 Example
@@ -17,7 +17,9 @@ Example
 """
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
+from .codim2 import Codim2Curve, Codim2Kind, Codim2Point, follow_event, follow_fold
 from .events import Event, box_events
+from .family import Family
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian
 from .errors import CallbackError, CallbackShapeError, ContinuationError
@@ -27,9 +29,13 @@ from .tracker import trace
 __all__ = [
     "CallbackError",
     "CallbackShapeError",
+    "Codim2Curve",
+    "Codim2Kind",
+    "Codim2Point",
     "ContinuationError",
     "Curve",
     "Event",
+    "Family",
     "Options",
     "Problem",
     "SpecialKind",
@@ -39,6 +45,8 @@ __all__ = [
     "branch_tangents",
     "check_jacobian",
     "finite_difference_jacobian",
+    "follow_event",
+    "follow_fold",
     "locate_branch_point",
     "switch_branch",
     "trace",

@@ -607,8 +607,17 @@ def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
     except LocateError as error:
         raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
                           f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None
-    found.sort(key=lambda item: item.located.s)
+    # In order along the step's chord, not of the root finder's parameter: each location
+    # refines its own Hermite arcs, whose parametrisations differ by O(h^4), so two special
+    # points closer than that (a fold next to an event, near a codimension-2 point) would be
+    # put in the wrong order; their projections on the chord are exact to the correction.
+    chord = b.x - a.x
+    found.sort(key=lambda item: float((_located_x(item.located) - a.x) @ chord))
     return found
+
+
+def _located_x(located: Located) -> np.ndarray:
+    return located.node.x if located.node is not None else located.correction.x
 
 
 def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint | None:
@@ -619,7 +628,7 @@ def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint 
     """
     first_terminal = next((item for item in found if item.terminal), None)
     if first_terminal is not None:
-        found = [item for item in found if item.located.s <= first_terminal.located.s]
+        found = found[:found.index(first_terminal) + 1]
 
     a_index = len(run.s) - 1
     b_index = None

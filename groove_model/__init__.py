@@ -28,7 +28,8 @@ Layout
     parameters, equilibria (:func:`solve_equilibrium`), boundary equations, SI units, lines
     by root finding.
 ``tracing``
-    every boundary for one ``k`` (:func:`trace_boundaries`), the topology it must have.
+    every boundary for one ``k`` (:func:`trace_boundaries`), the topology it must have, and the
+    atlas: every special point followed as a curve in ``k`` (:func:`trace_atlas`).
 ``analysis``
     regime classification and the audit of the paper's claims.
 ``io``, ``plots``, ``cli``
@@ -56,6 +57,9 @@ _SOURCES = {
     "solve_equilibrium": "model.equilibrium",
     "trace_boundaries": "tracing.tracer",
     "BoundarySet": "tracing.curves",
+    "Atlas": "tracing.atlas",
+    "trace_atlas": "tracing.atlas",
+    "trace_atlas_in_poisson": "tracing.atlas",
 }
 
 __all__ = sorted(_SOURCES)

@@ -41,7 +41,7 @@ def report():
 def test_every_claim_has_a_computed_verdict_and_numbers(report):
     ids = [c.id for c in report.claims]
     assert len(ids) == len(set(ids)) >= 30
-    assert {c.section for c in report.claims} == {"Rolling solutions",
+    assert {c.section for c in report.claims} == {"Contact mechanics", "Rolling solutions",
                                                   "Rolling-sliding solutions", "Caption of Fig. 2"}
     for c in report.claims:
         assert c.verdict in VERDICTS and c.numbers and c.method and c.summary
@@ -338,3 +338,20 @@ def test_help_has_examples(capsys):
         assert exc.value.code == 0
         text = capsys.readouterr().out
         assert "examples:" in text and f"groove {command} -k" in text
+
+
+def test_the_compliance_claim_holds_with_qualification_with_its_numbers(report):
+    claim = report.claim("compliance_qualitative")
+    assert claim.verdict == "holds with qualification"
+    numbers = claim.numbers
+    assert numbers["same topologies in k, in the same order"] is True
+    # Mindlin's ratio at nu = 1/2 is 2/3; k_fold and k_branch scale exactly with it
+    assert numbers["c(nu = 0.5)"] == pytest.approx(2.0 / 3.0, rel=1e-15)
+    for name in ("k_fold", "k_branch"):
+        assert numbers[f"{name}(nu = 0.5) / {name}(nu = 0)"] == pytest.approx(2.0 / 3.0,
+                                                                               rel=1e-12)
+    assert numbers["k_cross(nu = 0.5) / k_cross(nu = 0)"] < 0.5
+    # at the paper's k = 1 the junction is born at c sqrt 2 = 1
+    c = 1.0 / SQRT2
+    assert numbers["k = 1"]["thresholds in nu"] == f"nu_branch = {2 * (1 - c) / (2 - c):.10g}"
+    assert claim.counterexample.k == 1.0 and claim.counterexample.values["nu"] == 0.5

@@ -21,8 +21,10 @@ def test_solve_json(capsys):
 
 
 def test_solve_degrees_and_dimensional(capsys):
+    # --compliance 1 keeps the paper's law while --poisson sets the Hertz contact
     argv = ["solve", "--gamma", "20", "--delta", "0", "-k", "1", "--deg", "--json",
-            "--radius", "0.01", "--young", "2e11", "--poisson", "0.3", "--mass", "0.03"]
+            "--radius", "0.01", "--young", "2e11", "--poisson", "0.3", "--mass", "0.03",
+            "--compliance", "1"]
     assert main(argv) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["gamma"] == pytest.approx(math.radians(20))

@@ -10,7 +10,7 @@ import pytest
 
 from groove_model.tracing import topology
 from groove_model.model.parameters import Compliance, Parameters
-from groove_model.tracing.topology import expected_topology, thresholds
+from groove_model.tracing.topology import expected_topology, format_table, thresholds
 from groove_model.tracing import DEFAULT_OPTIONS, Where, trace_boundaries
 
 
@@ -25,9 +25,27 @@ def test_thresholds_match_their_closed_forms(c):
 
 def test_the_docstring_table_quotes_the_computed_thresholds():
     t = thresholds(1.0)
-    quoted = dict(re.findall(r"``(k_fold|k_branch)``\s+(\d\.\d+)", topology.__doc__))
+    quoted = dict(re.findall(r"``(k_fold|k_branch|k_cross)``\s+(\d+\.\d+)", topology.__doc__))
     assert float(quoted["k_fold"]) == pytest.approx(t.k_fold, abs=1e-14)
     assert float(quoted["k_branch"]) == pytest.approx(t.k_branch, abs=1e-14)
+
+
+def test_the_docstring_topology_table_is_the_generated_one():
+    doc = topology.__doc__
+    block = doc[doc.index("::\n\n") + 4:doc.index("\n\nExactly at")]
+    quoted = "\n".join(line[4:] for line in block.splitlines())
+    assert quoted == format_table(thresholds(1.0))
+
+
+def test_the_table_has_the_ranges_between_the_atlas_thresholds():
+    t = thresholds(1.0)
+    assert [p.name for p in t.points] == ["k_fold", "k_branch", "k_cross"]
+    assert [(r.k_low, r.k_high) for r in t.ranges] == [
+        (0.0, t.k_fold), (t.k_fold, t.k_branch), (t.k_branch, t.k_cross), (t.k_cross, math.inf)]
+    sequences = [r.curves["dr_limit"].sequence for r in t.ranges]
+    assert sequences == [("fold_delta",), ("fold_delta",), ("junction", "fold_delta"),
+                         ("fold_delta", "junction")]
+    assert t.near(t.k_cross * (1 + 1e-10)) and not t.near(t.k_cross * (1 + 1e-8))
 
 
 @pytest.mark.parametrize("k, branch, fold", [

@@ -3,6 +3,14 @@
 Exit codes: 0 success, 1 a computation failed (e.g. a boundary could not be traced),
 2 bad input (argument out of range, unreadable file); a message for bad input names the
 quantity, its value and the allowed range.
+
+The contact's compliance is one helper for every command that computes states: a command
+adds ``--compliance RATIO`` and ``--poisson NU`` with one line in its ``add_parser``,
+``add_compliance_options(p)``, and reads them in ``run`` with ``compliance_from(args)`` (a
+:class:`~groove_model.model.parameters.Compliance`, passed as ``Parameters(k, compliance)``);
+``compliance_label(compliance)`` ends its file names (``""`` for the paper's law, ``_nu0.3``,
+``_c0.8``). ``groove trace``, ``map``, ``solve`` and ``atlas`` do so; a sweep over ``k`` adds
+them the same way.
 """
 
 from __future__ import annotations
@@ -13,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..model.parameters import check_friction
+from ..model.parameters import POISSON_RANGE, Compliance, check_friction, check_poisson
 
 __all__ = [
     "COMPUTATION_ERRORS",
@@ -23,9 +31,13 @@ __all__ = [
     "FIGURE_FORMATS",
     "UsageError",
     "add_command",
+    "add_compliance_options",
+    "compliance_from",
+    "compliance_label",
     "figure_target",
     "friction",
     "output_directory",
+    "poisson",
     "real",
 ]
 
@@ -107,3 +119,66 @@ def figure_target(text: str) -> tuple[Path, str]:
     if not target.parent.is_dir():
         raise UsageError(f"directory {target.parent} of {target} does not exist")
     return target, fmt
+
+
+def poisson(text: str) -> float:
+    """Argument type of a Poisson ratio ``nu``: ``-1 < nu <= 1/2``."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"Poisson ratio nu = {text!r} is not a number; allowed range "
+            f"{POISSON_RANGE[0]:g} < nu <= {POISSON_RANGE[1]:g}") from None
+    try:
+        return check_poisson(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _ratio(text: str) -> float:
+    """Argument type of a compliance ratio: a finite number > 0."""
+    try:
+        return Compliance(float(text)).ratio
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"compliance ratio = {text!r} is outside the allowed range: finite and > 0"
+        ) from None
+
+
+def add_compliance_options(parser, poisson_help: str = "") -> None:
+    """Add ``--compliance RATIO`` and ``--poisson NU`` to a command (one line per command).
+
+    ``--poisson NU`` sets Mindlin's ratio ``2 (1 - nu)/(2 - nu)``
+    (:meth:`~groove_model.model.parameters.Compliance.from_poisson`); ``--compliance RATIO``
+    sets the ratio itself and, when both are given, wins (a command may use ``nu`` for more,
+    e.g. ``groove solve`` for the Hertz contact in SI units). Neither: the paper's ratio 1.
+    Read them back with :func:`compliance_from`.
+    """
+    group = parser.add_argument_group(
+        "contact compliance (default: the paper's T/N = u_t/u_n)")
+    group.add_argument("--compliance", type=_ratio, default=None, metavar="RATIO",
+                       help="compliance ratio (T/N) / (u_t/u_n) under proportional loading, "
+                            "> 0 (overrides the ratio from --poisson)")
+    group.add_argument("--poisson", type=poisson, default=None, metavar="NU",
+                       help="Poisson ratio of the ball, -1 < NU <= 0.5: Mindlin's ratio "
+                            "2 (1 - NU)/(2 - NU) (1 at NU = 0, 2/3 at NU = 0.5)"
+                            + (f"; {poisson_help}" if poisson_help else ""))
+
+
+def compliance_from(args) -> Compliance:
+    """The :class:`Compliance` the options of :func:`add_compliance_options` ask for."""
+    if getattr(args, "compliance", None) is not None:
+        return Compliance(args.compliance)
+    if getattr(args, "poisson", None) is not None:
+        return Compliance.from_poisson(args.poisson)
+    return Compliance()
+
+
+def compliance_label(compliance: Compliance) -> str:
+    """A file-name suffix for a compliance: ``""`` for the paper's, ``"_nu0.3"`` for one from a
+    Poisson ratio, ``"_c0.8"`` otherwise."""
+    if compliance.poisson is not None and compliance.poisson != 0.0:
+        return f"_nu{compliance.poisson:g}"
+    if compliance.ratio == 1.0:
+        return ""
+    return f"_c{compliance.ratio:g}"

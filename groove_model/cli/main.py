@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import logging
 
-from . import audit, plot, reproduce, solve, trace
+from . import atlas, audit, compliance, plot, reproduce, solve, trace
 from . import map as regime_map
 from .common import EXIT_FAILED, EXIT_USAGE, UsageError
 
@@ -21,6 +21,8 @@ _EXAMPLES = """examples:
   groove plot results/boundaries_k1.csv -o k1.png
   groove map -k 10 -o map_k10.png --svg
   groove audit -k 1 10
+  groove atlas --out results/          # special points as curves in k, thresholds
+  groove compliance --out results/compliance/
   groove reproduce                     # regenerate results/
 run 'groove COMMAND --help' for each command's options and examples"""
 
@@ -34,7 +36,7 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for command in (solve, trace, plot, regime_map, audit):
+    for command in (solve, trace, plot, regime_map, audit, atlas, compliance):
         command.add_parser(sub)
     reproduce.add_parser(sub, parser)
     return parser

@@ -11,6 +11,8 @@ from .common import (
     EXIT_FAILED,
     EXIT_OK,
     add_command,
+    add_compliance_options,
+    compliance_from,
     figure_target,
     friction,
 )
@@ -66,6 +68,7 @@ def add_parser(subparsers):
     p.add_argument("--deg", action="store_true", help="axes in degrees")
     p.add_argument("--no-boundaries", action="store_true",
                    help="shade the regions only (no tracing)")
+    add_compliance_options(p)
     p.set_defaults(run=run)
     return p
 
@@ -74,23 +77,25 @@ def run(args) -> int:
     """Trace (unless ``--no-boundaries``), draw and write; 1 if a computation failed."""
     # Imported here, not at the top: the tracer and the map load the engine, scipy and
     # matplotlib, which `groove --help` and `groove solve` should not wait for.
+    from ..model.parameters import Parameters
     from ..plots.regime_map import save_regime_map
     from ..tracing import trace_boundaries
 
     target, fmt = figure_target(args.output)
+    params = Parameters(args.k, compliance_from(args))
     formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))
     boundary_set = None
     try:
         if not args.no_boundaries:
             log.info("tracing the boundaries for k = %g", args.k)
-            boundary_set = trace_boundaries(args.k)
+            boundary_set = trace_boundaries(params)
             if not boundary_set.ok:
                 for failure in boundary_set.failures:
                     print(f"groove map: error: k = {args.k:g}: {failure}", file=sys.stderr)
                 print("groove map: nothing written: a boundary failed (see above)",
                       file=sys.stderr)
                 return EXIT_FAILED
-        paths = save_regime_map(args.k, target, n=args.resolution, degrees=args.deg,
+        paths = save_regime_map(params, target, n=args.resolution, degrees=args.deg,
                                 formats=formats, boundary_set=boundary_set,
                                 boundaries=not args.no_boundaries)
     except COMPUTATION_ERRORS as exc:

@@ -17,7 +17,8 @@ _EXAMPLES = """examples:
   groove reproduce --out elsewhere/
 
 runs, in order: groove trace -k 1 -k 10 --out OUT; groove map -k 1 -o OUT/map_k1.png --svg;
-groove map -k 10 -o OUT/map_k10.png --svg; groove audit --trace --out OUT
+groove map -k 10 -o OUT/map_k10.png --svg; groove atlas --out OUT;
+groove compliance --out OUT/compliance; groove audit --trace --out OUT
 """
 
 
@@ -26,10 +27,11 @@ def add_parser(subparsers, groove_parser):
     steps. Returns its parser."""
     p = add_command(
         subparsers, "reproduce",
-        help="regenerate every committed result: Figure 2, regime maps, claims audit",
+        help="regenerate every committed result: Figure 2, regime maps, atlas, claims audit",
         description="Regenerate the paper's Figure 2 (boundaries for k = 1 and 10, CSV and "
-                    "figure), the regime maps for k = 1 and 10, and the audit of the paper's "
-                    "claims, into one directory.",
+                    "figure), the regime maps for k = 1 and 10, the atlas of special points in "
+                    "k with its thresholds, its comparison for three Poisson ratios, and the "
+                    "audit of the paper's claims, into one directory.",
         examples=_EXAMPLES)
     p.add_argument("--out", default="results", help="output directory (default results/)")
     p.set_defaults(run=functools.partial(run, groove_parser=groove_parser))
@@ -42,6 +44,8 @@ def steps(out: Path) -> tuple:
         ["trace", "-k", "1", "-k", "10", "--out", str(out)],
         ["map", "-k", "1", "-o", str(out / "map_k1.png"), "--svg"],
         ["map", "-k", "10", "-o", str(out / "map_k10.png"), "--svg"],
+        ["atlas", "--k-min", "1e-4", "--k-max", "1e6", "--out", str(out)],
+        ["compliance", "--out", str(out / "compliance")],
         ["audit", "--trace", "--out", str(out)],
     )
 

@@ -6,7 +6,15 @@ import json
 import math
 
 from ..model.parameters import check_domain
-from .common import EXIT_OK, UsageError, add_command, friction, real
+from .common import (
+    EXIT_OK,
+    UsageError,
+    add_command,
+    add_compliance_options,
+    compliance_from,
+    friction,
+    real,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -14,6 +22,10 @@ _EXAMPLES = """examples:
   groove solve --gamma 0.6 --delta 0.2 -k 1
   groove solve --gamma 40 --delta 10 -k 10 --deg --json
   groove solve --gamma 0.6 --delta 0.2 -k 1 --radius 0.01 --young 2e11 --poisson 0.3 --mass 0.033
+  groove solve --gamma 0.6 --delta 0.2 -k 1 --compliance 0.8
+
+--poisson NU sets Mindlin's compliance 2 (1 - NU)/(2 - NU) and, with --radius, --young and
+--mass, the Hertz contact of the SI results; --compliance RATIO overrides the compliance.
 """
 
 _KEYS = ("regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
@@ -38,12 +50,12 @@ def add_parser(subparsers):
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")
-    dim = p.add_argument_group("dimensional results (all four needed)")
+    dim = p.add_argument_group("dimensional results (all four needed, --poisson below)")
     dim.add_argument("--radius", type=real("radius R"), help="ball radius R in m")
     dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
-    dim.add_argument("--poisson", type=real("Poisson ratio nu"), help="Poisson ratio nu")
     dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
     dim.add_argument("--g", type=real("g"), default=9.81, help="gravity in m/s^2 (default 9.81)")
+    add_compliance_options(p, poisson_help="also the nu of the SI results")
     p.set_defaults(run=run)
     return p
 
@@ -57,6 +69,7 @@ def run(args) -> int:
     # Imported here, not at the top: the solver loads scipy.optimize, which `groove --help`
     # and the other commands' start-up should not wait for.
     from ..model.equilibrium import solve_equilibrium
+    from ..model.parameters import Parameters
 
     gamma, delta = (math.radians(args.gamma), math.radians(args.delta)) if args.deg else (
         args.gamma, args.delta)
@@ -64,7 +77,8 @@ def run(args) -> int:
         check_domain(gamma, delta)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
-    eq = solve_equilibrium(gamma, delta, args.k)
+    compliance = compliance_from(args)
+    eq = solve_equilibrium(gamma, delta, Parameters(args.k, compliance))
     dimensional = _dimensional(args, eq)
     if args.json:
         out = {key: (_json_number(v) if isinstance(v, float) else v)
@@ -73,19 +87,19 @@ def run(args) -> int:
             out["dimensional"] = {key: _json_number(v) for key, v in dimensional.to_dict().items()}
         print(json.dumps(out))
         return EXIT_OK
-    _print_state(args.k, eq, dimensional)
+    _print_state(args.k, eq, dimensional, compliance.ratio)
     return EXIT_OK
 
 
 def _dimensional(args, eq):
-    """The SI state when all four material options are given, None when none is."""
+    """The SI state when all four material options are given, None when none of --radius,
+    --young, --mass is (--poisson alone only sets the compliance)."""
     # Imported here for the same reason as the solver in `run`.
     from ..model.dimensional import dimensional_state
 
-    dims = [args.radius, args.young, args.poisson, args.mass]
-    if all(v is None for v in dims):
+    if all(v is None for v in (args.radius, args.young, args.mass)):
         return None
-    if any(v is None for v in dims):
+    if any(v is None for v in (args.radius, args.young, args.poisson, args.mass)):
         raise UsageError("dimensional results need all of --radius, --young, --poisson, --mass")
     try:
         return dimensional_state(eq, args.radius, args.young, args.poisson, args.mass, args.g)
@@ -93,9 +107,10 @@ def _dimensional(args, eq):
         raise UsageError(str(exc)) from None
 
 
-def _print_state(k: float, eq, dimensional) -> None:
-    print(f"k = {k:g}, gamma = {eq.gamma:.10g} rad ({math.degrees(eq.gamma):.6g} deg), "
-          f"delta = {eq.delta:.10g} rad ({math.degrees(eq.delta):.6g} deg)")
+def _print_state(k: float, eq, dimensional, ratio: float = 1.0) -> None:
+    compliance = "" if ratio == 1.0 else f", compliance ratio {ratio:.6g}"
+    print(f"k = {k:g}{compliance}, gamma = {eq.gamma:.10g} rad ({math.degrees(eq.gamma):.6g} "
+          f"deg), delta = {eq.delta:.10g} rad ({math.degrees(eq.delta):.6g} deg)")
     print(f"  regime     {eq.regime.replace('_', ' ')}, rotation {eq.rotation}")
     print(f"  theta_L    {eq.theta_L:.10g}   theta_R {eq.theta_R:.10g}")
     print(f"  beta_L     {eq.beta_L:.10g}   beta_R  {eq.beta_R:.10g}")

@@ -5,7 +5,16 @@ from __future__ import annotations
 import logging
 import sys
 
-from .common import EXIT_FAILED, EXIT_OK, add_command, friction, output_directory
+from .common import (
+    EXIT_FAILED,
+    EXIT_OK,
+    add_command,
+    add_compliance_options,
+    compliance_from,
+    compliance_label,
+    friction,
+    output_directory,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -15,9 +24,11 @@ _EXAMPLES = """examples:
   groove trace -k 1 -k 10 --out results/          # the paper's Figure 2: CSVs and overlay
   groove trace -k 0.5 --out out/ --keep-unphysical  # keep unphysical continuations, flagged
   groove trace -k 2 -k 20 --out out/ --deg --figure my_overlay
+  groove trace -k 1 --poisson 0.5 --out out/      # Mindlin's compliance for nu = 0.5
 
 writes, for each k, boundaries_k{k}.csv (one row per point) and special_points_k{k}.csv,
-and the overlay FIGURE.png and FIGURE.svg; nothing is written if any boundary fails.
+and the overlay FIGURE.png and FIGURE.svg; nothing is written if any boundary fails. With
+another compliance than the paper's the names end in _nu{NU} (--poisson) or _c{RATIO}.
 """
 
 
@@ -40,6 +51,7 @@ def add_parser(subparsers):
                    help="keep the parts of each boundary where its regime is not valid")
     p.add_argument("--deg", action="store_true", help="overlay axes in degrees")
     p.add_argument("--no-figure", action="store_true", help="write the CSVs only")
+    add_compliance_options(p)
     p.set_defaults(run=run)
     return p
 
@@ -50,13 +62,17 @@ def run(args) -> int:
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.export import write_boundary_set
     from ..plots.overlay import save_overlay
+    from ..model.parameters import Parameters
     from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
+    compliance = compliance_from(args)
+    suffix = compliance_label(compliance)
     sets = []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %g", k)
-        result = trace_boundaries(k, keep_unphysical=args.keep_unphysical)
+        result = trace_boundaries(Parameters(k, compliance),
+                                  keep_unphysical=args.keep_unphysical)
         sets.append(result)
         if not result.ok:
             for failure in result.failures:
@@ -65,14 +81,15 @@ def run(args) -> int:
         print("groove trace: nothing written: a boundary failed (see above)", file=sys.stderr)
         return EXIT_FAILED
     for result in sets:
-        paths = write_boundary_set(result, out)
-        print(f"k = {result.k:g}: {', '.join(str(p) for p in paths)}; "
+        paths = write_boundary_set(result, out, suffix)
+        print(f"k = {result.k:g}, c = {compliance.ratio:.6g}: "
+              f"{', '.join(str(p) for p in paths)}; "
               f"{sum(len(c.x) for c in result.curves.values())} points, "
               f"|rs_limit - dr_limit| <= {result.limit_distance:.1e}")
         for note in result.notes:
             print(f"  note: {note}")
     if not args.no_figure:
-        name = args.figure or "boundaries_" + "_".join(f"k{b.k:g}" for b in sets)
+        name = args.figure or "boundaries_" + "_".join(f"k{b.k:g}" for b in sets) + suffix
         for path in save_overlay(sets, out / name, degrees=args.deg):
             print(f"figure: {path}")
     return EXIT_OK

@@ -14,10 +14,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 __all__ = [
+    "POISSON_RANGE",
     "Compliance",
     "Parameters",
     "check_domain",
     "check_friction",
+    "check_poisson",
     "gamma_delta_from_thetas",
     "thetas_from_gamma_delta",
 ]
@@ -50,23 +52,48 @@ def check_friction(k: object) -> float:
     return value
 
 
+#: the Poisson ratios of an isotropic elastic solid: -1 < nu <= 1/2
+POISSON_RANGE = (-1.0, 0.5)
+
+
+def check_poisson(nu: object) -> float:
+    """Return the Poisson ratio as a float, or raise if it is outside ``-1 < nu <= 1/2``.
+
+    Raises
+    ------
+    TypeError
+        If ``nu`` is not a real number.
+    ValueError
+        If ``nu`` is not finite or outside the range; the message names the value and range.
+    """
+    value = _check_real("Poisson ratio nu", nu)
+    low, high = POISSON_RANGE
+    if not (math.isfinite(value) and low < value <= high):
+        raise ValueError(f"Poisson ratio nu = {value!r} is outside the allowed range "
+                         f"{low:g} < nu <= {high:g} (an isotropic elastic solid)")
+    return value
+
+
 @dataclass(frozen=True)
 class Compliance:
-    """Tangential compliance of a proportionally loaded Hertz-Mindlin contact.
+    r"""Tangential compliance of a proportionally loaded Hertz-Mindlin contact.
 
     The paper (Eq. prop) uses ``u_t/u_n = T/N``. This object keeps that law replaceable:
-    ``T/N = ratio * u_t/u_n``, with ``ratio = 1`` the paper's small-Poisson-ratio limit.
+    ``T/N = ratio * u_t/u_n``, with ``ratio = 1`` the paper's small-Poisson-ratio limit;
+    :meth:`from_poisson` gives Mindlin's ratio for a Poisson ratio ``nu``.
 
     Parameters
     ----------
     ratio : float
         ``(T/N) / (u_t/u_n)`` under proportional loading, finite and > 0. The paper derives
-        ``ratio = 1`` from Mindlin & Deresiewicz in the small-Poisson-ratio limit; other values
-        are for sensitivity studies (the paper notes the qualitative picture should not
-        depend on the exact compliance).
+        ``ratio = 1`` from Mindlin & Deresiewicz in the small-Poisson-ratio limit.
+    poisson : float or None
+        The Poisson ratio the ratio was computed from (:meth:`from_poisson`), else ``None``;
+        for reports only (two compliances with the same ratio are equal).
     """
 
     ratio: float = 1.0
+    poisson: float | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
         value = _check_real("compliance ratio", self.ratio)
@@ -75,6 +102,44 @@ class Compliance:
                 f"compliance ratio = {value!r} is outside the allowed range: finite and > 0"
             )
         object.__setattr__(self, "ratio", value)
+
+    @classmethod
+    def from_poisson(cls, nu) -> Compliance:
+        r"""Mindlin's compliance of a sphere on a rigid flat: ``ratio = 2 (1 - nu)/(2 - nu)``.
+
+        Parameters
+        ----------
+        nu : float
+            Poisson ratio of the ball, ``-1 < nu <= 1/2``.
+
+        Raises
+        ------
+        ValueError, TypeError
+            If ``nu`` is outside its range or not a number.
+
+        Notes
+        -----
+        The wall is rigid, so only the ball (shear modulus ``G = E / (2 (1 + nu))``) deforms.
+        At a contact of radius ``a`` the incremental normal stiffness is Hertz's
+        ``dN/du_n = 2 a E / (1 - nu^2)`` (from ``N = (4 E / (3 (1 - nu^2))) sqrt(R) u_n^(3/2)``,
+        ``a = sqrt(R u_n)``, paper Eq. hertz) and the tangential one, without microslip,
+        Mindlin's ``dT/du_t = 8 a G / (2 - nu)`` (R. D. Mindlin, "Compliance of elastic bodies
+        in contact", J. Appl. Mech. 16 (1949) 259-268; K. L. Johnson, *Contact Mechanics*,
+        1985, ch. 7, with a rigid counterface). Proportional loading keeps ``dT/dN = T/N`` with
+        ``|dT| < k dN``, so no microslip occurs (Mindlin & Deresiewicz), and both
+        displacements grow with the same ``a``:
+
+        .. math::
+
+            \frac{du_t}{du_n} = \frac{T}{N}\,\frac{2 a E/(1 - \nu^2)}{8 a G/(2 - \nu)}
+            = \frac{T}{N}\,\frac{2 - \nu}{2 (1 - \nu)},
+
+        the same ratio at every ``a``, hence for the totals:
+        ``T/N = 2 (1 - nu)/(2 - nu) u_t/u_n``; ``ratio = 1`` at ``nu = 0`` (the paper's law)
+        and ``2/3`` at ``nu = 1/2``.
+        """
+        value = check_poisson(nu)
+        return cls(2.0 * (1.0 - value) / (2.0 - value), poisson=value)
 
 
 @dataclass(frozen=True)

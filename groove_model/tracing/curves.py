@@ -13,10 +13,14 @@ import enum
 import math
 from dataclasses import dataclass, field
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
 
 from ..model.parameters import Parameters
+
+if TYPE_CHECKING:  # pandas is imported where a table is made: `groove atlas` needs none
+    import pandas as pd
 
 __all__ = [
     "CSV_COLUMNS",
@@ -165,6 +169,7 @@ class BoundaryCurve:
 
     def to_frame(self, params: Parameters | None = None) -> pd.DataFrame:
         """The CSV table of this boundary (columns :data:`CSV_COLUMNS`)."""
+        import pandas as pd  # only the tables need it, not the tracer
         params = params or Parameters(self.k)
         q = boundary_quantities(self.name, self.x, params)
         point = np.full(len(self.x), "", dtype=object)
@@ -210,6 +215,7 @@ class BoundarySet:
 
     def to_frame(self) -> pd.DataFrame:
         """All boundaries as one table (columns :data:`CSV_COLUMNS`)."""
+        import pandas as pd  # only the tables need it, not the tracer
         params = self.params or Parameters(self.k)
         frames = [c.to_frame(params) for c in self.curves.values()]
         return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(
@@ -217,6 +223,7 @@ class BoundarySet:
 
     def special_points_frame(self) -> pd.DataFrame:
         """All special points (columns :data:`SPECIAL_POINT_COLUMNS`, plus ``note``)."""
+        import pandas as pd  # only the tables need it, not the tracer
         rows = [dict(boundary=p.boundary, k=self.k, kind=p.kind.value, gamma=p.x[0],
                      delta=p.x[1], beta_L=p.x[2], upsilon=p.x[3], note=p.note)
                 for c in self.curves.values() for p in c.special_points]

@@ -1,75 +1,78 @@
 r"""Which boundaries exist for a friction coefficient ``k``, where they start and end, and why.
 
 The tracer checks every traced curve against :func:`expected_topology`; a curve that disagrees
-(a junction or fold missing or extra, a wrong start or end) is reported as a failure, never as a
-success. The thresholds in ``k`` where the picture changes are computed here from the boundary
-equations (:func:`thresholds`), not written in by hand; for the paper's compliance ``c = 1``:
+(a junction or fold missing or extra, special points in another order, a wrong start or end) is
+reported as a failure, never as a success. The table is not written by hand: it is generated
+from the atlas (:mod:`groove_model.tracing.atlas`), which follows every special point as a
+curve in ``k`` and locates the thresholds where one is born, dies or crosses another, as
+codimension-2 points (:func:`thresholds`, computed once per compliance ratio ``c`` on first
+use, over ``1e-4 c <= k <= 1e6 c``). Between consecutive thresholds the special points of the
+curves at one ``k`` of the range (the atlas's curves evaluated there, only those on the
+physical part of their boundary) give the topology (:func:`topology_table`). For ``c = 1``:
 
-==========================  ==================  ===============================================
-threshold                   value (``c = 1``)   what happens
-==========================  ==================  ===============================================
-``k_fold``                  0.70710678118654    the turning point in ``gamma`` of ``rs_no_roll``
-                                                enters it through its start ``(arctan k, 0)``
-``k_branch``                1.41421356237310    ``(arctan k, 0)`` meets the branch point
-                                                ``(arctan sqrt 2, 0)``: ``upsilon = 0`` on
-                                                ``dr_limit`` (the junction) appears there
-==========================  ==================  ===============================================
+==============  ===================  ===================================================
+threshold       value (``c = 1``)    what happens
+==============  ===================  ===================================================
+``k_fold``      0.70710678118655     the fold in gamma of ``rs_no_roll`` enters through
+                                     its start, the seed ``(arctan(k/c), 0)``
+``k_branch``    1.41421356237310     the junction is born at the branch point
+                                     ``(arctan sqrt 2, 0)``, which the seed meets there
+``k_cross``     15.19939619365445    the junction passes the maximum of ``delta`` along
+                                     ``dr_limit``
+==============  ===================  ===================================================
 
-Both equal ``c / sqrt 2`` and ``c sqrt 2`` to rounding (``k_branch = c tan(arctan sqrt 2)``
-since the seed is at ``arctan(k/c)``; ``k_fold``: at the seed ``beta_L = beta_R = beta``, and
-a tangent of ``rs_no_roll`` with no ``gamma`` component has ``d beta_L = -d beta_R``, which the
-linearised right-rolling equation ``c sqrt(sin beta_R) cos beta_R = k sin(beta_L)^(3/2)`` allows
-only where ``tan^2 beta = 2``, i.e. ``k/c = cot beta = 1/sqrt 2``). The tests check the computed
-values against these closed forms.
+``k_fold`` and ``k_branch`` equal ``c / sqrt 2`` and ``c sqrt 2`` (the tests check both against
+these closed forms: ``k_branch = c tan(arctan sqrt 2)`` since the seed is at
+``arctan(k/c)``; ``k_fold``: at the seed ``beta_L = beta_R = beta``, and a tangent of
+``rs_no_roll`` with no ``gamma`` component has ``d beta_L = -d beta_R``, which the linearised
+right-rolling equation ``c sqrt(sin beta_R) cos beta_R = k sin(beta_L)^(3/2)`` allows only
+where ``tan^2 beta = 2``, i.e. ``k/c = 1/sqrt 2``). ``k_cross`` has no closed form.
 
-The topology, in each range of ``k`` (``gamma_min`` is where the limit curves stop on their way
-into the singular corner ``(0, 0)``; the corner ``(pi/4, pi/4)`` ends both ``upsilon = 0`` lines):
+The topology in each range of ``k`` for ``c = 1`` (``gamma_min`` is where the limit curves
+stop on their way into the singular corner ``(0, 0)``; the corner ``(pi/4, pi/4)`` ends both
+``upsilon = 0`` lines; the inner special points are listed in order from the start;
+``rs_limit`` is the curve ``dr_limit`` without the junction mark):
 
-============  ======================  ==========================  ==========================
-boundary      ``k < k_fold``          ``k_fold < k < k_branch``   ``k > k_branch``
-============  ======================  ==========================  ==========================
-dr_limit      seed -> ``gamma_min``;  same                        same, plus one junction
-              one fold in ``delta``                               (``upsilon = 0``)
-rs_limit      the same curve as ``dr_limit`` (no junction mark)
-dr_no_roll    no physical part        no physical part            branch point -> junction
-rs_no_roll    seed -> corner          seed -> corner, one fold    junction -> corner, one
-                                      in ``gamma``                fold in ``gamma``
-============  ======================  ==========================  ==========================
+.. topology table (c = 1), generated by format_table(thresholds(1.0)):
+
+::
+
+    k range                 dr_limit                                 dr_no_roll                rs_no_roll
+    k < k_fold              seed -> gamma_min: fold_delta            absent                    seed -> corner
+    k_fold < k < k_branch   seed -> gamma_min: fold_delta            absent                    seed -> corner: fold_gamma
+    k_branch < k < k_cross  seed -> gamma_min: junction, fold_delta  branch_point -> junction  junction -> corner: fold_gamma
+    k > k_cross             seed -> gamma_min: fold_delta, junction  branch_point -> junction  junction -> corner: fold_gamma
 
 Exactly at ``k_branch`` the junction is the seed and ``dr_no_roll`` is the single point
-``(arctan sqrt 2, 0)``. Within a relative distance :data:`THRESHOLD_BAND` of a threshold either
-neighbouring topology is accepted: there a junction or fold lies within rounding of a start.
+``(arctan sqrt 2, 0)``. Within a relative distance :data:`THRESHOLD_BAND` of a threshold what
+changes there is not checked (either neighbouring topology is accepted): there a junction or
+fold lies within rounding of a start or of another special point. Beyond the atlas's range no
+threshold is known: the outermost ranges are taken to extend to 0 and to infinity.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 from dataclasses import dataclass
 
-import numpy as np
-from scipy.optimize import brentq
+from ..model.parameters import Parameters
+from .atlas import Atlas, Threshold, trace_atlas
+from .curves import PointKind
 
-from ..model.boundaries import BoundarySystem, dr_no_roll_branch_point, limit_seed
-from ..model.parameters import Compliance, Parameters
+__all__ = ["REFERENCE_RANGE", "THRESHOLD_BAND", "CurveTopology", "Thresholds", "TopologyRange",
+           "expected_topology", "format_table", "thresholds", "thresholds_from_atlas",
+           "topology_table"]
 
-__all__ = ["THRESHOLD_BAND", "CurveTopology", "Thresholds", "expected_topology", "thresholds"]
-
-#: relative distance to a threshold within which both neighbouring topologies are accepted
+#: relative distance to a threshold within which what changes there is not checked
 THRESHOLD_BAND = 1e-9
 
+#: the range of k / c over which the atlas of the expected topology looks for thresholds
+REFERENCE_RANGE = (1e-4, 1e6)
 
-@dataclass(frozen=True)
-class Thresholds:
-    """The values of ``k`` where the topology changes, for one compliance ratio ``c``."""
-
-    c: float
-    k_fold: float
-    k_branch: float
-
-    def near(self, k: float) -> bool:
-        """Whether ``k`` is within :data:`THRESHOLD_BAND` of a threshold."""
-        return any(abs(k / t - 1.0) <= THRESHOLD_BAND for t in (self.k_fold, self.k_branch))
+#: the boundaries whose topology is tabulated, in the order of the table's columns
+_COLUMNS = ("dr_limit", "dr_no_roll", "rs_no_roll")
 
 
 @dataclass(frozen=True)
@@ -87,6 +90,8 @@ class CurveTopology:
         Junctions strictly inside the curve (not at its ends).
     folds_gamma, folds_delta : int or None
         Turning points in ``gamma`` and in ``delta`` (not at the ends).
+    sequence : tuple of str or None
+        The kinds of those inner points in order from the start (``None``: not checked).
     """
 
     present: bool | None
@@ -95,69 +100,201 @@ class CurveTopology:
     junctions: int | None = 0
     folds_gamma: int | None = 0
     folds_delta: int | None = 0
+    sequence: tuple[str, ...] | None = None
+
+    def describe(self) -> str:
+        """``"start -> end: inner points"``, or ``"absent"``."""
+        if self.present is False:
+            return "absent"
+        text = f"{self.start} -> {self.end}"
+        inner = self.sequence if self.sequence is not None else ("?",)
+        return f"{text}: {', '.join(inner)}" if inner else text
 
 
-def _seed_fold_function(k: float, c: float) -> float:
-    """``det`` of the ``rs_no_roll`` Jacobian without its ``gamma`` column, at the seed.
+@dataclass(frozen=True)
+class TopologyRange:
+    """The topology between two consecutive thresholds ``k_low < k < k_high``."""
 
-    It is proportional to the ``gamma`` component of the tangent of ``rs_no_roll`` at
-    ``(arctan(k/c), 0)`` and vanishes where a turning point in ``gamma`` passes the seed.
+    k_low: float
+    k_high: float
+    low: str
+    high: str
+    curves: dict
+
+    def label(self) -> str:
+        """``"k_fold < k < k_branch"``, ``"k < k_fold"``, ``"k > k_cross"``."""
+        if self.k_low == 0.0 and self.k_high == math.inf:
+            return "every k"
+        if self.k_low == 0.0:
+            return f"k < {self.high}"
+        if self.k_high == math.inf:
+            return f"k > {self.low}"
+        return f"{self.low} < k < {self.high}"
+
+
+@dataclass(frozen=True)
+class Thresholds:
+    """The thresholds in ``k`` for one compliance ratio ``c``, and the topology between them.
+
+    Attributes
+    ----------
+    c : float
+    points : tuple of Threshold
+        Every threshold the atlas found, in increasing ``k``.
+    ranges : tuple of TopologyRange
+        The topology in each range between them.
     """
-    params = Parameters(k, Compliance(c))
-    jacobian = BoundarySystem("rs_no_roll", params).jacobian(limit_seed(params))
-    return float(np.linalg.det(jacobian[:, 1:]))
+
+    c: float
+    points: tuple[Threshold, ...]
+    ranges: tuple[TopologyRange, ...]
+
+    def value(self, name: str) -> float:
+        """The threshold ``name`` (``"k_fold"`` ...).
+
+        Raises
+        ------
+        KeyError
+            If the atlas found none of that name.
+        """
+        for point in self.points:
+            if point.name == name:
+                return point.value
+        raise KeyError(f"no threshold {name!r} for c = {self.c!r}; found "
+                       f"{', '.join(p.name for p in self.points) or 'none'}")
+
+    @property
+    def k_fold(self) -> float:
+        return self.value("k_fold")
+
+    @property
+    def k_branch(self) -> float:
+        return self.value("k_branch")
+
+    @property
+    def k_cross(self) -> float:
+        return self.value("k_cross")
+
+    def near(self, k: float) -> bool:
+        """Whether ``k`` is within :data:`THRESHOLD_BAND` of a threshold."""
+        return any(abs(k / p.value - 1.0) <= THRESHOLD_BAND for p in self.points)
 
 
-@functools.lru_cache(maxsize=64)
-def thresholds(c: float = 1.0) -> Thresholds:
-    """The thresholds in ``k`` for compliance ratio ``c``, computed from the equations.
+def _features(atlas: Atlas, k: float) -> dict:
+    """``{(boundary, kind): [x, ...]}``: the special points on a physical part at ``k``."""
+    features: dict = {}
+    for curve in atlas.curves.values():
+        for x in curve.physical_at(k):
+            features.setdefault((curve.boundary, curve.kind), []).append(x)
+    return features
 
-    ``k_branch = c tan(gamma_b)`` with ``gamma_b`` the branch point of ``dr_no_roll`` on the
-    symmetric family; ``k_fold`` is the root of :func:`_seed_fold_function` in
-    ``(0, k_branch)``, bracketed on a logarithmic grid and refined by Brent's method to
-    rounding (the grid also checks that the root is the only one).
+
+def _topologies(features: dict) -> dict[str, CurveTopology]:
+    """The expected topology of each boundary from its special points at one ``k``."""
+    def count(boundary, kind):
+        return len(features.get((boundary, kind), ()))
+
+    def folds(boundary):
+        return dict(folds_gamma=count(boundary, PointKind.FOLD_GAMMA),
+                    folds_delta=count(boundary, PointKind.FOLD_DELTA))
+
+    def single(boundary):
+        inner = [kind.value for (b, kind), xs in features.items() if b == boundary for _ in xs]
+        return tuple(inner) if len(inner) <= 1 else None
+
+    # gamma decreases monotonically along the limit curve from its seed (it has no fold in
+    # gamma, which the tracer checks): its inner points in order are those of decreasing gamma
+    inner = sorted(((x[0], kind.value) for (b, kind), xs in features.items()
+                    if b == "dr_limit" for x in xs), reverse=True)
+    junctions = count("dr_limit", PointKind.JUNCTION)
+    limit = dict(present=True, start="seed", end="gamma_min", **folds("dr_limit"))
+    return {
+        "dr_limit": CurveTopology(junctions=junctions, sequence=tuple(k for _, k in inner),
+                                  **limit),
+        "rs_limit": CurveTopology(junctions=0, sequence=tuple(
+            k for _, k in inner if k != PointKind.JUNCTION.value), **limit),
+        "dr_no_roll": CurveTopology(junctions > 0, "branch_point", "junction",
+                                    sequence=single("dr_no_roll"), **folds("dr_no_roll")),
+        "rs_no_roll": CurveTopology(True, "junction" if junctions else "seed", "corner",
+                                    sequence=single("rs_no_roll"), **folds("rs_no_roll")),
+    }
+
+
+def topology_table(atlas: Atlas) -> tuple[TopologyRange, ...]:
+    """The expected topology in each range of ``k`` between the atlas's thresholds.
+
+    Each range's topology is read from the atlas at one ``k`` inside it: the geometric mean of
+    its ends (of the atlas's range for the outermost ones).
+    """
+    if atlas.axis.name != "k":
+        raise ValueError(f"topology_table needs an atlas in k, got one in {atlas.axis.name}")
+    cuts = [(t.value, t.name) for t in atlas.thresholds]
+    bounds = [(0.0, ""), *cuts, (math.inf, "")]
+    k_min, k_max = atlas.range
+    ranges = []
+    for (low, low_name), (high, high_name) in zip(bounds, bounds[1:]):
+        inside = math.sqrt(max(low, k_min) * min(high, k_max))
+        ranges.append(TopologyRange(low, high, low_name, high_name,
+                                    _topologies(_features(atlas, inside))))
+    return tuple(ranges)
+
+
+def thresholds_from_atlas(atlas: Atlas) -> Thresholds:
+    """The thresholds and the topology table of an atlas in ``k``.
 
     Raises
     ------
     RuntimeError
-        If the seed-fold function does not change sign exactly once on ``(0, k_branch)``.
+        If the atlas failed (a curve could not be followed).
     """
-    k_branch = c * math.tan(float(dr_no_roll_branch_point()[0]))
-    grid = np.geomspace(1e-4 * k_branch, k_branch * (1.0 - 1e-6), 97)
-    values = np.array([_seed_fold_function(k, c) for k in grid])
-    changes = np.flatnonzero(np.sign(values[:-1]) != np.sign(values[1:]))
-    if len(changes) != 1:
-        raise RuntimeError(f"the seed-fold function of rs_no_roll changes sign {len(changes)} "
-                           f"times on (0, k_branch) for c = {c!r}; expected once")
-    i = int(changes[0])
-    k_fold = brentq(_seed_fold_function, grid[i], grid[i + 1], args=(c,), xtol=1e-300,
-                    rtol=4.0 * np.finfo(float).eps)
-    return Thresholds(c=c, k_fold=float(k_fold), k_branch=float(k_branch))
+    if not atlas.ok:
+        raise RuntimeError(f"the atlas for c = {atlas.axis.fixed!r} failed: "
+                           + "; ".join(atlas.failures))
+    return Thresholds(atlas.axis.fixed, atlas.thresholds, topology_table(atlas))
+
+
+@functools.lru_cache(maxsize=64)
+def thresholds(c: float = 1.0) -> Thresholds:
+    """The thresholds in ``k`` for compliance ratio ``c``, from the atlas (computed once per ``c``).
+
+    The atlas spans ``REFERENCE_RANGE`` times ``c``; about half a second.
+
+    Raises
+    ------
+    RuntimeError
+        If the atlas failed.
+    """
+    low, high = REFERENCE_RANGE
+    return thresholds_from_atlas(trace_atlas((low * c, high * c), compliance=c))
+
+
+def _merge(a: CurveTopology, b: CurveTopology) -> CurveTopology:
+    """What two topologies share; a field where they differ is ``None`` (not checked)."""
+    return CurveTopology(**{f.name: getattr(a, f.name) if getattr(a, f.name) == getattr(
+        b, f.name) else None for f in dataclasses.fields(CurveTopology)})
 
 
 def expected_topology(params: Parameters) -> dict[str, CurveTopology]:
     """What each boundary must look like for ``params`` (see the module's table)."""
-    t = thresholds(params.c)
+    ranges = thresholds(params.c).ranges
     k = params.k
-    band = THRESHOLD_BAND
+    i = next(i for i, r in enumerate(ranges) if k < r.k_high or i == len(ranges) - 1)
+    neighbours = [ranges[i]]
+    if i > 0 and abs(k / ranges[i].k_low - 1.0) <= THRESHOLD_BAND:
+        neighbours.append(ranges[i - 1])
+    if i + 1 < len(ranges) and abs(k / ranges[i].k_high - 1.0) <= THRESHOLD_BAND:
+        neighbours.append(ranges[i + 1])
+    curves = dict(neighbours[0].curves)
+    for other in neighbours[1:]:
+        curves = {name: _merge(curves[name], other.curves[name]) for name in curves}
+    return curves
 
-    def side(threshold: float) -> bool | None:
-        """True above, False below, None within the band."""
-        if abs(k / threshold - 1.0) <= band:
-            return None
-        return k > threshold
 
-    above_branch = side(t.k_branch)
-    above_fold = side(t.k_fold)
-    junctions = None if above_branch is None else int(above_branch)
-    limit = CurveTopology(True, "seed", "gamma_min", junctions=junctions, folds_delta=1)
-    return {
-        "dr_limit": limit,
-        "rs_limit": CurveTopology(True, "seed", "gamma_min", junctions=0, folds_delta=1),
-        "dr_no_roll": CurveTopology(above_branch, "branch_point", "junction"),
-        "rs_no_roll": CurveTopology(
-            True,
-            None if above_branch is None else ("junction" if above_branch else "seed"),
-            "corner",
-            folds_gamma=None if above_fold is None else int(above_fold)),
-    }
+def format_table(table: Thresholds) -> str:
+    """The topology table as aligned text (the one in this module's docstring for ``c = 1``)."""
+    rows = [("k range", *_COLUMNS)]
+    rows += [(r.label(), *(r.curves[name].describe() for name in _COLUMNS))
+             for r in table.ranges]
+    widths = [max(len(row[j]) for row in rows) for j in range(len(rows[0]))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip()
+                     for row in rows)

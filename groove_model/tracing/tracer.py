@@ -1,15 +1,18 @@
 """Trace every regime boundary for a friction coefficient ``k`` with the continuation engine.
 
-Which curve starts and ends where follows from ``k`` (the table in :mod:`groove_model.topology`,
-with its thresholds ``k_fold = c/sqrt 2`` and ``k_branch = c sqrt 2`` computed from the
-equations):
+Which curve starts and ends where follows from ``k``: the table of
+:mod:`groove_model.tracing.topology`, generated from the atlas of special points
+(:mod:`groove_model.tracing.atlas`) with its thresholds ``k_fold = c/sqrt 2``,
+``k_branch = c sqrt 2`` and ``k_cross`` (``15.199...`` for ``c = 1``). The tracer uses it to know
+what to trace (``dr_no_roll`` only where it has a physical part, ``rs_no_roll`` from the junction
+or from the seed) and checks every curve against it:
 
 * ``dr_limit`` and ``rs_limit`` (one curve seen from the two regimes) start at
   ``(arctan(k/c), 0)`` and run towards the origin, which they approach tangentially to
   ``delta = gamma`` with ``beta_L ~ 2 gamma^2 / k``; the origin is a singular corner (a flat
   groove), so they stop at ``gamma = gamma_min``. On the way ``delta`` has one maximum (a fold in
   ``delta``), and for ``k > k_branch`` ``upsilon`` vanishes once: the junction with the
-  ``upsilon = 0`` lines.
+  ``upsilon = 0`` lines, before the maximum of ``delta`` for ``k < k_cross`` and after it above.
 * ``dr_no_roll`` leaves the symmetric family ``delta = 0`` at the branch point
   ``(arctan sqrt 2, 0)``; its physical part (``T/N_L <= k``) ends at the junction, so it has
   one only for ``k > k_branch``. It is traced in its deflated form (the no-roll torque divided
@@ -20,7 +23,7 @@ equations):
   junction of a ``k`` within ``1e-7`` of ``k_branch`` would be off by ``1e-9``).
 * ``rs_no_roll`` starts at the junction when ``k > k_branch``, at ``(arctan(k/c), 0)``
   otherwise, and ends at the corner ``(pi/4, pi/4)``; for ``k > k_fold`` it turns once in
-  ``gamma`` (for large ``k`` ever closer to the corner, at ``beta_L`` of order ``1/k^2``).
+  ``gamma`` (for large ``k`` ever closer to the corner, at ``beta_L ~ (2/(3k))^2``).
 
 The curves are traced in the chart ``y = (gamma / g, delta / g, w, upsilon)``, ``beta_L = w^2``,
 where every residual is analytic and the corner ``beta_L = 0`` is a regular point located as the
@@ -33,7 +36,7 @@ keeps the rest, flagged ``physical = False``.
 Nothing is reported as traced that has not been checked: the engine brackets every zero of an
 event and of the tangent's ``gamma`` and ``delta`` components inside each step (pairs of zeros
 included) and fails loudly where it cannot locate one; every curve is then compared with the
-expected topology for its ``k`` (starts, ends, junctions, folds), and a curve that differs is a
+expected topology for its ``k`` (starts, ends, junctions, folds and their order), and a curve that differs is a
 failure with a message saying what differs.
 """
 
@@ -129,19 +132,25 @@ def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[st
             where = f" (gamma, delta) = ({last[0]:.9g}, {last[1]:.9g})"
         problems.append(f"ends at {curve.end}{where}, expected {expected.end}")
     first, last = (int(rows[0]), int(rows[-1])) if len(rows) else (0, -1)
+    inner_points = [p for p in curve.special_points
+                    if first < p.index < last and curve.physical[p.index]
+                    and p.kind in (PointKind.JUNCTION, PointKind.FOLD_GAMMA,
+                                   PointKind.FOLD_DELTA)]
     for kind, count in ((PointKind.JUNCTION, expected.junctions),
                         (PointKind.FOLD_GAMMA, expected.folds_gamma),
                         (PointKind.FOLD_DELTA, expected.folds_delta)):
-        inner = [p for p in curve.special(kind)
-                 if first < p.index < last and curve.physical[p.index]]
+        inner = [p for p in inner_points if p.kind is kind]
         if count is not None and len(inner) != count:
             problems.append(f"has {len(inner)} {kind.value} point(s) inside, expected {count}")
+    sequence = tuple(p.kind.value for p in sorted(inner_points, key=lambda p: p.index))
+    if not problems and expected.sequence is not None and sequence != expected.sequence:
+        problems.append(f"has its inner points in the order {', '.join(sequence)}, expected "
+                        f"{', '.join(expected.sequence)}")
     return problems
 
 
-def _check(curves: dict, params: Parameters, notes: list) -> dict:
+def _check(curves: dict, params: Parameters, notes: list, expected: dict) -> dict:
     """Compare each curve with the expected topology; a differing curve becomes a failure."""
-    expected = expected_topology(params)
     checked = {}
     for name, curve in curves.items():
         problems = _topology_problems(curve, expected[name]) if curve.ok else []
@@ -293,7 +302,13 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     -------
     BoundarySet
         ``ok`` only if every boundary was traced to its expected end with its expected
-        junctions and folds (:func:`groove_model.topology.expected_topology`).
+        junctions and folds, in their expected order
+        (:func:`groove_model.tracing.topology.expected_topology`).
+
+    Notes
+    -----
+    The expected topology comes from the atlas of special points; its thresholds are computed
+    on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
     params = Parameters.coerce(k)
     options = options or DEFAULT_OPTIONS
@@ -303,11 +318,18 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         raise ValueError(f"gamma_min = {gamma_min!r} is outside the allowed range "
                          f"0 < gamma_min < arctan(k/c) = {params.gamma_limit!r}")
     job = _Job(params, options, gamma_min, keep_unphysical)
-    curves, notes, junction = job.dr_no_roll()
+    expected = expected_topology(params)
+    if expected["dr_no_roll"].present is False and not keep_unphysical:
+        # below k_branch the atlas has no junction: dr_no_roll has no physical part
+        curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "
+                                       "T/N_L > k all along it"], None
+    else:
+        curves, notes, junction = job.dr_no_roll()
     curves.update(job.limit(junction))
-    curves["rs_no_roll"] = job.rs_no_roll(junction)
+    from_seed = expected["rs_no_roll"].start == Where.SEED.value
+    curves["rs_no_roll"] = job.rs_no_roll(None if from_seed else junction)
 
-    curves = _check(curves, params, notes)
+    curves = _check(curves, params, notes, expected)
     distance = (_limit_distance(curves["dr_limit"], curves["rs_limit"], params)
                 if curves["dr_limit"].ok and curves["rs_limit"].ok else math.nan)
     if curves["rs_limit"].ok and not distance <= LIMIT_TOLERANCE:

@@ -2,7 +2,8 @@ r"""An audit of the paper's quantitative statements, each checked by computation
 
 Every statement of fact in the paragraphs "Rolling solutions" and "Rolling-sliding solutions"
 of Halsey & Ertas, "A Ball in a Groove" (and the two statements of the caption of their
-Fig. 2 that describe the same curves) is a :class:`~.report.Claim`: the sentence quoted
+Fig. 2 that describe the same curves, and the sentence of the paragraph on contact mechanics
+that the compliance hardly matters) is a :class:`~.report.Claim`: the sentence quoted
 verbatim from the LaTeX source, how it was checked, the verdict and the numbers behind it, and,
 where the statement is false as written, a concrete counterexample ``(k, gamma, delta, values)``.
 
@@ -26,7 +27,9 @@ Verdicts
     more than the numerical tolerance.
 
 All angles are in radians; forces are the paper's ratios (``T/N``) and displacements are per
-unit approach ``Z``. The compliance is the paper's, ``u_t/u_n = T/N``.
+unit approach ``Z``. The compliance is the paper's, ``u_t/u_n = T/N``, except in the check of
+the compliance claim (:mod:`~.contact`), which traces the atlas of special points for Mindlin's
+compliance at several Poisson ratios (:mod:`groove_model.analysis.compliance`).
 
 Modules
 -------
@@ -38,7 +41,7 @@ Modules
     returns only what it computed (a :class:`~.registry.Finding`).
 ``context``
     The grids, lines and traced boundaries the checks share, computed once.
-``rolling``, ``caption``, ``rolling_sliding``
+``contact``, ``rolling``, ``caption``, ``rolling_sliding``
     The checks, one file per paragraph of the paper.
 ``report``
     What the audit produces: :class:`~.report.Claim`, :class:`~.report.AuditReport` (JSON and

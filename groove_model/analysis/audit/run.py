@@ -6,7 +6,7 @@ import logging
 import time
 
 from ...model.parameters import check_friction
-from . import caption, rolling, rolling_sliding  # noqa: F401  (their @claim register the checks)
+from . import caption, contact, rolling, rolling_sliding  # noqa: F401  (their @claim register the checks)
 from .context import Context
 from .registry import CHECKS, CLAIM_TEXTS
 from .report import DEFAULT_KS, AuditReport

@@ -1,0 +1,90 @@
+"""``groove compliance``: the atlas for several Poisson ratios, and in ``nu`` at fixed ``k``."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from .common import (
+    COMPUTATION_ERRORS,
+    EXIT_FAILED,
+    EXIT_OK,
+    add_command,
+    friction,
+    output_directory,
+    poisson,
+)
+
+__all__ = ["add_parser", "run"]
+
+_EXAMPLES = """examples:
+  groove compliance --out results/compliance/       # nu = 0, 0.3, 0.5; k = 1 and 10
+  groove compliance --poissons 0 0.25 0.5 -k 2 --out out/
+
+writes atlas_nu<NU>_*.csv for each Poisson ratio (the atlas in k, as groove atlas writes it),
+atlas_k<K>_in_nu_*.csv for each k (the atlas in nu over [0, 0.5]), compliance.md (thresholds,
+topologies and shifts compared) and the figure compliance.png/.svg.
+"""
+
+
+def add_parser(subparsers):
+    """Register ``groove compliance``; returns its parser."""
+    p = add_command(
+        subparsers, "compliance",
+        help="how the special points and thresholds move with the contact's Poisson ratio",
+        description="Trace the atlas of special points in k for Mindlin's compliance "
+                    "c = 2 (1 - nu)/(2 - nu) at several Poisson ratios, and in nu over "
+                    "[0, 0.5] at fixed k; report which thresholds and special points move, "
+                    "by how much, and whether the topology changes.",
+        examples=_EXAMPLES)
+    p.add_argument("--poissons", type=poisson, nargs="+", default=[0.0, 0.3, 0.5],
+                   metavar="NU", help="Poisson ratios, the first the reference (default 0 0.3 "
+                                      "0.5)")
+    p.add_argument("-k", type=friction, action="extend", nargs="+", dest="ks", metavar="K",
+                   help="friction coefficients of the atlases in nu (default 1 10)")
+    p.add_argument("--out", required=True, help="output directory (created if needed)")
+    p.add_argument("--no-figure", action="store_true", help="write the CSVs and report only")
+    p.set_defaults(run=run)
+    return p
+
+
+def run(args) -> int:
+    """Compute, write and print the comparison; 1 if a computation failed."""
+    # Imported here, not at the top: the atlases load the engine, scipy and pandas.
+    from ..analysis.compliance import compliance_study
+    from ..io.atlas import write_atlas
+    from ..io.atomic import atomic_write
+
+    out = output_directory(args.out)
+    ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
+    try:
+        study = compliance_study(tuple(dict.fromkeys(args.poissons)), ks)
+    except COMPUTATION_ERRORS as exc:
+        print(f"groove compliance: error: computation failed: {type(exc).__name__}: {exc}",
+              file=sys.stderr)
+        return EXIT_FAILED
+    if not study.ok:
+        for atlas in (*study.in_k.values(), *study.in_nu.values()):
+            for failure in atlas.failures:
+                print(f"groove compliance: error: {failure}", file=sys.stderr)
+        print("groove compliance: nothing written: a curve failed", file=sys.stderr)
+        return EXIT_FAILED
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for nu, atlas in study.in_k.items():
+        paths += write_atlas(atlas, out, f"atlas_nu{nu:g}")
+    for k, atlas in study.in_nu.items():
+        paths += write_atlas(atlas, out, f"atlas_k{k:g}_in_nu")
+    report = study.to_markdown()
+    paths.append(atomic_write(out / "compliance.md",
+                              lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
+    if not args.no_figure:
+        # Imported here: matplotlib is needed for the figure only.
+        from ..plots.atlas import save_compliance_figure
+
+        paths += save_compliance_figure(study.in_k, study.in_nu, out / "compliance")
+    print(report)
+    print(f"computed in {study.seconds:.1f} s")
+    for path in paths:
+        print(f"wrote {path}")
+    return EXIT_OK

@@ -1,0 +1,168 @@
+"""The atlas: special points followed in k (and in nu) against the tracer at each k, the
+thresholds against closed forms and against a bisection on the per-k topology."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from groove_model.model.parameters import Compliance, Parameters
+from groove_model.tracing import trace_boundaries
+from groove_model.tracing.atlas import ATLAS_COLUMNS, trace_atlas, trace_atlas_in_poisson
+from groove_model.tracing.topology import thresholds
+
+SQRT2 = math.sqrt(2.0)
+RESULTS = Path(__file__).resolve().parents[1] / "results"
+#: atlas curve -> (boundary, kind) of the tracer's special point
+TRACED = {"junction": ("dr_limit", "junction"),
+          "dr_limit_fold_delta": ("dr_limit", "fold_delta"),
+          "rs_no_roll_fold_gamma": ("rs_no_roll", "fold_gamma")}
+
+
+@pytest.fixture(scope="module")
+def atlas():
+    return trace_atlas((1e-4, 1e6))
+
+
+def test_the_atlas_has_three_curves_and_three_thresholds(atlas):
+    assert atlas.ok and set(atlas.curves) == set(TRACED)
+    assert [t.name for t in atlas.thresholds] == ["k_fold", "k_branch", "k_cross"]
+    for t in atlas.thresholds:
+        assert t.residual <= 1e-14 and t.accuracy <= 1e-12
+        assert len(t.equations) == 5  # five equations in (gamma, delta, w, upsilon, log k)
+    # the closed forms: k_fold = c / sqrt 2, k_branch = c sqrt 2
+    assert atlas.threshold("k_fold").value == pytest.approx(1 / SQRT2, rel=1e-14)
+    assert atlas.threshold("k_branch").value == pytest.approx(SQRT2, rel=1e-14)
+    # the junction is born at the branch point, the fold enters through the seed
+    gamma_b = math.atan(SQRT2)
+    assert np.max(np.abs(atlas.threshold("k_branch").x
+                         - [gamma_b, 0.0, math.pi / 2 - gamma_b, 0.0])) <= 1e-12
+    k_fold = 1 / SQRT2
+    assert np.max(np.abs(atlas.threshold("k_fold").x
+                         - [math.atan(k_fold), 0.0, math.pi / 2 - math.atan(k_fold), 0.0])) \
+        <= 1e-12
+    # k_cross: the junction is the maximum of delta along dr_limit, upsilon = 0 there
+    cross = atlas.threshold("k_cross")
+    assert cross.value == pytest.approx(15.1993961936545, rel=1e-12)
+    assert abs(cross.x[3]) <= 1e-14
+
+
+def test_every_atlas_point_agrees_with_the_tracer_at_50_k(atlas):
+    worst = 0.0
+    for k in np.geomspace(1e-4, 1e6, 50):
+        traced = trace_boundaries(k)
+        assert traced.ok, traced.failures
+        for name, (boundary, kind) in TRACED.items():
+            mine = atlas.curves[name].physical_at(k)
+            theirs = [p.x for p in traced.curves[boundary].special(kind)] \
+                if boundary in traced.curves else []
+            assert len(mine) == len(theirs), (k, name)
+            g = min(1.0, math.atan(k))  # the scale of gamma and delta for small k
+            for x, y in zip(mine, theirs):
+                difference = np.abs(x - y)
+                difference[:2] /= g
+                worst = max(worst, float(difference.max()))
+    assert worst <= 1e-10
+
+
+def test_the_junction_has_beta_L_arctan_c_over_k_and_the_fold_reaches_the_corner(atlas):
+    junction = atlas.curves["junction"]
+    k = junction.values
+    assert np.max(np.abs(junction.x[:, 2] - np.arctan(1.0 / k))) <= 1e-12
+    assert np.all(junction.x[:, 3] == 0.0)
+    # the fold in gamma of rs_no_roll approaches (pi/4, pi/4) with beta_L ~ (2/(3k))^2
+    fold = atlas.curves["rs_no_roll_fold_gamma"]
+    (x,) = fold.at(1e6)
+    assert x[2] * (1.5e6) ** 2 == pytest.approx(1.0, rel=1e-5)
+    assert np.max(np.abs(x[:2] - math.pi / 4)) <= 1e-6
+
+
+def test_frames_and_dense_output(atlas):
+    frame = atlas.curve_frame("junction")
+    assert tuple(frame.columns) == ATLAS_COLUMNS
+    assert frame["threshold"].iloc[0] == "k_branch" and (frame["compliance"] == 1.0).all()
+    assert (frame["nu"] == 0.0).all()
+    table = atlas.thresholds_frame()
+    assert list(table["threshold"]) == ["k_fold", "k_branch", "k_cross"]
+    values, x = atlas.curves["dr_limit_fold_delta"].dense(4)
+    assert len(values) > len(atlas.curves["dr_limit_fold_delta"].p) and x.shape[1] == 4
+
+
+def test_a_range_without_thresholds_has_no_junction():
+    small = trace_atlas((1e-3, 0.5))
+    assert small.ok and set(small.curves) == {"dr_limit_fold_delta"} and not small.thresholds
+    with pytest.raises(KeyError, match="no threshold 'k_fold'"):
+        small.threshold("k_fold")
+    with pytest.raises(ValueError, match="k_min < k_max"):
+        trace_atlas((2.0, 1.0))
+
+
+def test_the_atlas_in_nu_at_k_1_finds_where_c_sqrt_2_equals_1():
+    in_nu = trace_atlas_in_poisson(1.0)
+    (t,) = in_nu.thresholds
+    # c(nu) sqrt 2 = 1  <=>  c = 1/sqrt 2  <=>  nu = 2 (1 - c)/(2 - c)
+    c = 1.0 / SQRT2
+    assert t.name == "nu_branch"
+    assert t.value == pytest.approx(2.0 * (1.0 - c) / (2.0 - c), abs=1e-12)
+
+
+def test_the_atlas_in_nu_at_k_10_and_the_atlas_in_k_agree_on_k_cross():
+    in_nu = trace_atlas_in_poisson(10.0)
+    (t,) = in_nu.thresholds
+    assert t.name == "nu_cross"
+    compliance = Compliance.from_poisson(t.value)
+    # at that nu, the atlas in k puts k_cross at k = 10
+    in_k = trace_atlas((1.0, 100.0), compliance=compliance)
+    assert in_k.threshold("k_cross").value == pytest.approx(10.0, rel=1e-10)
+
+
+def _observed(k, feature):
+    """The per-k topology as the tracer sees it (not its check against the table)."""
+    curves = trace_boundaries(k).curves
+    if feature == "fold":
+        return bool(curves["rs_no_roll"].special("fold_gamma"))
+    junctions = curves["dr_limit"].special("junction")
+    if feature == "branch":
+        return bool(junctions)
+    (fold,) = curves["dr_limit"].special("fold_delta")
+    return bool(junctions) and fold.index < junctions[0].index
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name, feature", [("k_fold", "fold"), ("k_branch", "branch"),
+                                           ("k_cross", "cross")])
+def test_each_threshold_agrees_with_a_bisection_on_the_per_k_topology(name, feature):
+    value = thresholds(1.0).value(name)
+    low, high = value * (1 - 1e-3), value * (1 + 1e-3)
+    assert not _observed(low, feature) and _observed(high, feature)
+    while high / low - 1.0 > 1e-10:
+        middle = math.sqrt(low * high)
+        low, high = (middle, high) if not _observed(middle, feature) else (low, middle)
+    band = 1e-9 * value
+    assert low - band <= value <= high + band, (low, value, high)
+
+
+@pytest.mark.parametrize("offset", [1e-2, 1e-8])
+def test_the_tracer_checks_the_order_of_junction_and_maximum(atlas, offset):
+    # 1e-8 from k_cross the two points are 2e-9 apart along dr_limit, in one step
+    k_cross = atlas.threshold("k_cross").value
+    for k, order in ((k_cross * (1 - offset), ("junction", "fold_delta")),
+                     (k_cross * (1 + offset), ("fold_delta", "junction"))):
+        traced = trace_boundaries(Parameters(k))
+        assert traced.ok
+        inner = [p.kind.value for p in traced.curves["dr_limit"].special_points
+                 if p.kind.value in order]
+        assert tuple(inner) == order
+
+
+def test_committed_atlas_results_are_reproduced(atlas):
+    for name in TRACED:
+        old = pd.read_csv(RESULTS / f"atlas_{name}.csv", keep_default_na=False)
+        new = atlas.curve_frame(name)
+        assert list(old.columns) == list(new.columns) and len(old) == len(new), name
+        for column in ("k", "gamma", "delta", "beta_L", "upsilon"):
+            assert np.allclose(new[column], old[column], rtol=1e-9, atol=1e-11), column
+    old = pd.read_csv(RESULTS / "atlas_thresholds.csv")
+    assert np.allclose(old["value"], [t.value for t in atlas.thresholds], rtol=1e-12)
