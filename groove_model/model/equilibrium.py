@@ -17,8 +17,8 @@ Every state is written in one unknown, the load-share root
 with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Double rolling
 reduces to one equation :math:`P(w) = 0` (a quartic, :func:`double_rolling_state`) that is
 strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
-``scipy.optimize.elementwise.find_root``), never by Newton from a guess. Rolling sliding gives
-``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force ratio, ``upsilon``
+:func:`~groove_model.model.roots.chandrupatla`), never by Newton from a guess. Rolling
+sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force ratio, ``upsilon``
 and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``, ``w`` and ``1 - w``
 (:func:`_kinematics`), each a sum of terms of one sign or a difference that vanishes only where
 the physical quantity itself does (``upsilon`` on the no-roll lines, ``d_L`` at the regime
@@ -37,9 +37,9 @@ from dataclasses import dataclass, fields
 from enum import Enum
 
 import numpy as np
-from scipy.optimize import elementwise
 
 from .parameters import HALF_PI, Parameters, check_domain
+from .roots import chandrupatla
 
 __all__ = [
     "Equilibrium",
@@ -320,13 +320,10 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     v = 1.0 - w
     if np.any(inner):
         upper = (rho0[inner] > 0.125 + (5.0 / 12.0) * K[inner]).astype(float)
-        res = elementwise.find_root(
-            double_rolling_equation,
-            (np.zeros(upper.shape), np.full(upper.shape, 0.5)),
-            args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
-            tolerances=dict(xatol=_XATOL, xrtol=2.0 * _EPS, fatol=0.0, frtol=0.0),
-        )
-        x = np.where(res.success, res.x, np.nan)
+        x = chandrupatla(double_rolling_equation, np.zeros(upper.shape),
+                         np.full(upper.shape, 0.5),
+                         args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
+                         xatol=_XATOL, xrtol=2.0 * _EPS)
         w[inner] = np.where(upper > 0.0, 1.0 - x, x)
         v[inner] = np.where(upper > 0.0, x, 1.0 - x)
     kin = _kinematics(w, v, sin_g, cos_g)
