@@ -3,6 +3,9 @@
 Exit codes: 0 success, 1 a computation failed (e.g. a boundary could not be traced),
 2 bad input (argument out of range, unreadable file); a message for bad input names the
 quantity, its value and the allowed range.
+
+Nothing here imports numpy or the solver at module level: ``groove --help`` loads only this
+package (see ``computation_errors`` and ``friction``).
 """
 
 from __future__ import annotations
@@ -11,39 +14,53 @@ import argparse
 import math
 from pathlib import Path
 
-import numpy as np
-
-from ..model.parameters import check_friction
-
 __all__ = [
-    "COMPUTATION_ERRORS",
     "EXIT_FAILED",
     "EXIT_OK",
     "EXIT_USAGE",
     "FIGURE_FORMATS",
     "UsageError",
     "add_command",
+    "add_friction",
+    "add_verbose",
+    "computation_errors",
     "figure_target",
     "friction",
+    "one_friction",
     "output_directory",
     "real",
 ]
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
-#: Errors of a computation (root finding, continuation, linear algebra): exit code 1.
-COMPUTATION_ERRORS = (ArithmeticError, RuntimeError, np.linalg.LinAlgError)
 FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+def computation_errors() -> tuple:
+    """Errors of a computation (root finding, continuation, linear algebra): exit code 1."""
+    # Imported here, not at the top: numpy is what `groove --help` should not wait for.
+    import numpy as np
+
+    return (ArithmeticError, RuntimeError, np.linalg.LinAlgError)
 
 
 class UsageError(Exception):
     """Bad input from the command line: message printed, exit code 2."""
 
 
+def add_verbose(parser: argparse.ArgumentParser) -> None:
+    """``-v``: log progress. Given to ``groove`` and to every command, so it goes before or
+    after the command's name; no default here, so a command's parser does not reset it."""
+    parser.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
+                        help="log progress on standard error")
+
+
 def add_command(subparsers, name: str, help: str, description: str,
                 examples: str) -> argparse.ArgumentParser:
     """Register one ``groove`` command whose help ends with its examples; returns its parser."""
-    return subparsers.add_parser(name, help=help, description=description, epilog=examples,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = subparsers.add_parser(name, help=help, description=description, epilog=examples,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_verbose(parser)
+    return parser
 
 
 def friction(text: str) -> float:
@@ -54,10 +71,41 @@ def friction(text: str) -> float:
         raise argparse.ArgumentTypeError(
             f"friction coefficient k = {text!r} is not a number; k must be finite and > 0"
         ) from None
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_friction
+
     try:
         return check_friction(value)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "") -> None:
+    """``-k K [K ...]``, repeatable: every command reads ``-k 1 10`` and ``-k 1 -k 10`` alike.
+
+    The values go to ``args.ks`` (a list, in the order given; None when not given).
+    """
+    parser.add_argument("-k", action="extend", nargs="+", type=friction, dest="ks",
+                        metavar="K", required=required,
+                        help=help or "friction coefficients (> 0): -k 1 10 or -k 1 -k 10")
+
+
+def one_friction(args, command: str) -> float:
+    """The one ``k`` of a command that takes one.
+
+    Raises
+    ------
+    UsageError
+        If several different values were given.
+    """
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import k_text
+
+    ks = list(dict.fromkeys(args.ks))
+    if len(ks) != 1:
+        raise UsageError(f"{command} takes one friction coefficient, got k = "
+                         f"{', '.join(map(k_text, ks))}: run it once per k")
+    return ks[0]
 
 
 def real(name: str, allowed: str = "a finite number"):

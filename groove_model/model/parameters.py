@@ -19,6 +19,7 @@ __all__ = [
     "check_domain",
     "check_friction",
     "gamma_delta_from_thetas",
+    "k_text",
     "thetas_from_gamma_delta",
 ]
 
@@ -48,6 +49,16 @@ def check_friction(k: object) -> float:
             "k must be finite and > 0"
         )
     return value
+
+
+def k_text(k: float) -> str:
+    """``k`` as the shortest text that reads back as the same float, without a trailing ``.0``.
+
+    ``1``, ``0.5``, ``1.0000001``, ``1e-05``: two different ``k`` never get the same text, so it
+    is safe in file names and labels (``f"{k:g}"`` makes 1.0000001 and 1.0000002 both ``1``).
+    """
+    text = repr(float(k))
+    return text[:-2] if text.endswith(".0") else text
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,9 @@ Modules
     Markdown), :data:`~.report.DEFAULT_KS`.
 ``run``
     :func:`~.run.run_audit`.
+``defaults``
+    :data:`~.defaults.DEFAULT_KS`, in a module that imports nothing.
 
 This package's ``__init__`` imports nothing, so that ``groove --help`` can read
-:data:`~.report.DEFAULT_KS` without loading scipy and the solver.
+:data:`~.defaults.DEFAULT_KS` without loading numpy, scipy and the solver.
 """

@@ -4,7 +4,7 @@ This module is what the audit produces; the checks that compute it are in
 :mod:`groove_model.analysis.audit.rolling`, :mod:`~groove_model.analysis.audit.caption` and
 :mod:`~groove_model.analysis.audit.rolling_sliding`, run by
 :func:`groove_model.analysis.audit.run.run_audit`. It imports neither scipy nor the solver, so
-the command line can name :data:`DEFAULT_KS` without loading them.
+the command line can name :data:`DEFAULT_KS` (from :mod:`.defaults`) without loading them.
 """
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 from enum import Enum
 
 import numpy as np
+
+from .defaults import DEFAULT_KS
 
 __all__ = [
     "DEFAULT_KS",
@@ -44,9 +46,6 @@ class Verdict(str, Enum):
 
 
 VERDICTS = tuple(v.value for v in Verdict)
-#: Friction coefficients audited by default: both sides of k = sqrt 2 and of k = 1, and the
-#: k = 1 and k = 10 of the paper's Fig. 2.
-DEFAULT_KS = (0.3, 1.0, 1.2, 1.4, 1.5, 2.0, 10.0, 100.0)
 PAPER = "Halsey & Ertas, 'A Ball in a Groove'"
 
 
