@@ -24,9 +24,12 @@ _EXAMPLES = """examples:
   groove audit -k 2 --json                      # the whole report as JSON on stdout
   groove audit --trace --out results/           # add the tracer's curves as a cross-check
 
-verdicts: 'holds', 'holds with qualification', 'fails' (with a counterexample); they are
-computed by the point solver and bracketed root finding, never written in. A paper claim
-that fails is a finding, not an error: the exit code is 0 when the audit itself ran.
+verdicts: 'holds', 'holds with qualification', 'fails' (always with a counterexample, printed
+below the list), 'inconclusive' (not confirmed at the check's resolution, but no point found
+where it is false), 'not applicable' (the statement is about other k, e.g. k > sqrt 2; the
+reason is printed). They are computed by the point solver and bracketed root finding, never
+written in. A paper claim that fails is a finding, not an error: the exit code is 0 when the
+audit itself ran.
 """
 
 
