@@ -26,7 +26,8 @@ from ..io.export import atomic_write
 from ..model.lines import dr_limit_no_roll_point
 from ..model.parameters import Parameters
 from ..tracing import trace_boundaries
-from .overlay import STYLE_LABELS, draw_boundaries
+from .labels import label_regions, region_label_positions
+from .overlay import DIAGONAL_LABEL, MARKER_LABELS, STYLE_LABELS, draw_boundaries
 
 __all__ = [
     "CATEGORY_COLOURS",
@@ -100,6 +101,18 @@ def _label_offsets(params: Parameters) -> dict:
     }
 
 
+def _seed_label_area(params: Parameters) -> list:
+    """Points (radians) covered by the seed points and their labels, which the regions' names
+    keep clear of (offsets converted at about 0.0037 rad per point, the default figure's)."""
+    offsets = _label_offsets(params)
+    area = []
+    for label, (g, d) in _seed_points(params).items():
+        dx, dy = offsets[label]
+        steps = np.linspace(0.0, 1.0, 6)
+        area += [(g + t * 0.0037 * dx, d + t * 0.0037 * (dy + 6)) for t in steps]
+    return area
+
+
 def _rgba(codes: np.ndarray) -> np.ndarray:
     table = np.array([to_rgba(CATEGORY_COLOURS[name]) for name in CATEGORIES] + [(0, 0, 0, 0)])
     return table[np.where(codes == OUTSIDE, len(CATEGORIES), codes)]
@@ -113,8 +126,8 @@ def _drawn_entries(boundary_set) -> set:
         if name not in STYLE_LABELS or not physical.any():
             continue
         entries.add(STYLE_LABELS[name])
-        entries.update(p.kind.replace("_", " ") for p in curve.special_points
-                       if physical[p.index])
+        entries.update(MARKER_LABELS[p.kind] for p in curve.special_points
+                       if physical[p.index] and p.kind in MARKER_LABELS)
     return entries
 
 
@@ -143,8 +156,9 @@ def draw_regime_map(ax, k, n: int = 600, boundaries: bool = True, degrees: bool 
     dict
         The artists: ``"image"`` (the shaded regions, an ``AxesImage`` clipped to the triangle),
         ``"segments"`` (the two segments of ``delta = 0``), ``"boundaries"`` (from
-        :func:`groove_model.plots.overlay.draw_boundaries`), ``"seeds"`` (markers and labels of the
-        seed points), ``"legend"``, and ``"boundary_set"``, the traced boundaries (or None).
+        :func:`groove_model.plots.overlay.draw_boundaries`), ``"regions"`` (the names written
+        in the regions), ``"seeds"`` (markers and labels of the seed points), ``"legend"``, and
+        ``"boundary_set"``, the traced boundaries (or None).
 
     Raises
     ------
@@ -171,6 +185,9 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
                         "; ".join(boundary_set.failures))
         artists["boundary_set"] = boundary_set
         artists["boundaries"], boundary_handles = _overlay_boundaries(ax, boundary_set, degrees)
+    artists["regions"] = label_regions(
+        ax, region_label_positions([params], codes_list=[codes], avoid=_seed_label_area(params)),
+        scale, color="0.1")
     artists["seeds"] = _label_seed_points(ax, params, scale)
     _frame_axes(ax, top, "deg" if degrees else "rad")
     if legend:
@@ -252,7 +269,7 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list):
             handles.append(Patch(facecolor=CATEGORY_COLOURS[name], edgecolor="0.5", lw=0.5))
         labels.append(CATEGORY_LABELS[name])
     for handle, text in boundary_handles:
-        if text == r"$\delta = \gamma$":
+        if text == DIAGONAL_LABEL:
             continue
         handles.append(handle)
         labels.append(text)
