@@ -94,7 +94,8 @@ def _summary(report) -> str:
     for c in report.claims:
         if c.counterexample is not None and c.verdict == "fails":
             ce = c.counterexample
-            lines.append(f"  counterexample to {c.id}: k = {k_text(ce.k)}, gamma = {ce.gamma:.10g}, "
+            lines.append(f"  counterexample to {c.id}: k = {k_text(ce.k)}, "
+                         f"gamma = {ce.gamma:.10g}, "
                          f"delta = {ce.delta:.10g}: " + ", ".join(
                              f"{key} = {v:.6g}" if isinstance(v, float) and math.isfinite(v)
                              else f"{key} = {v}" for key, v in ce.values.items()))

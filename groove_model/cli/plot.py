@@ -37,7 +37,8 @@ def run(args) -> int:
     from ..model.parameters import k_text
     from ..plots.overlay import save_overlay
 
-    frames, sources = [], {}
+    frames = []
+    sources: dict[float, str] = {}
     for name in args.files:
         try:
             frame = read_boundaries_csv(name)

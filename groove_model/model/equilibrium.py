@@ -18,11 +18,11 @@ with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Dou
 reduces to one equation :math:`P(w) = 0` (a quartic, :func:`double_rolling_state`) that is
 strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
 :func:`~groove_model.model.roots.chandrupatla`), never by Newton from a guess. Rolling
-sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force ratio, ``upsilon``
-and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``, ``w`` and ``1 - w``
-(:func:`_kinematics`), each a sum of terms of one sign or a difference that vanishes only where
-the physical quantity itself does (``upsilon`` on the no-roll lines, ``d_L`` at the regime
-boundary, ``cos beta_R`` at ``beta_R = pi/2``).
+sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force
+ratio, ``upsilon`` and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``,
+``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms of one sign or a difference
+that vanishes only where the physical quantity itself does (``upsilon`` on the no-roll lines,
+``d_L`` at the regime boundary, ``cos beta_R`` at ``beta_R = pi/2``).
 
 No formula subtracts nearly equal angles or cosines, and ratios of small sines are formed
 before they can underflow, so the same expressions hold from the corners of the domain
@@ -35,6 +35,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from enum import Enum
+from typing import Any
 
 import numpy as np
 
@@ -102,23 +103,23 @@ class Equilibrium:
         the origin, so subnormal or 0 for ``gamma`` below about ``1e-205`` (their exact values).
     """
 
-    regime: object
-    rotation: object
-    gamma: object
-    delta: object
-    theta_L: object
-    theta_R: object
-    beta_L: object
-    beta_R: object
-    upsilon: object
-    d_L: object
-    d_R: object
-    T_over_N_L: object
-    T_over_N_R: object
-    N_L_over_N_R: object
-    n_L: object
-    n_R: object
-    t: object
+    regime: Any
+    rotation: Any
+    gamma: Any
+    delta: Any
+    theta_L: Any
+    theta_R: Any
+    beta_L: Any
+    beta_R: Any
+    upsilon: Any
+    d_L: Any
+    d_R: Any
+    T_over_N_L: Any
+    T_over_N_R: Any
+    N_L_over_N_R: Any
+    n_L: Any
+    n_R: Any
+    t: Any
 
     def to_dict(self) -> dict:
         """The fields as a dict (for JSON); arrays become lists."""
@@ -516,5 +517,6 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     values = dict(out, regime=regime, rotation=rotation, gamma=gamma, delta=delta,
                   theta_L=theta_L, theta_R=theta_R)
     if scalar:
-        values = {key: (v[0].item() if hasattr(v[0], "item") else v[0]) for key, v in values.items()}
+        values = {key: (v[0].item() if hasattr(v[0], "item") else v[0])
+                  for key, v in values.items()}
     return Equilibrium(**values)

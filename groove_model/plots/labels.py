@@ -71,16 +71,17 @@ def region_label_positions(params_list, top: float = _HALF_PI, codes_list=None,
         below_top &= ~((np.abs(centres[None, :] - g) < 0.5 * _HALF_SIZE[0])
                        & (np.abs(centres[:, None] - d) < 0.5 * _HALF_SIZE[1]))
     # For a label about one k: how much room each cell leaves inside one region of every k.
-    room_any = [sum(_room(codes == code) for code in np.unique(codes)) for codes in codes_list]
+    room_any = [np.maximum.reduce([_room(codes == code) for code in np.unique(codes)])
+                for codes in codes_list]
     positions = {}
     for name in REGION_NAMES:
         masks = [codes == CATEGORY_CODE[name] for codes in codes_list]
         candidates = [(None, _room(np.logical_and.reduce(masks) & below_top))]
         if len(codes_list) > 1:
-            for i in sorted(range(len(codes_list)), key=lambda i: -params_list[i].k):
-                others = [r for j, r in enumerate(room_any) if j != i]
-                candidates.append((params_list[i].k,
-                                   np.minimum.reduce([_room(masks[i] & below_top), *others])))
+            for m in sorted(range(len(codes_list)), key=lambda m: -params_list[m].k):
+                others = [r for o, r in enumerate(room_any) if o != m]
+                candidates.append((params_list[m].k,
+                                   np.minimum.reduce([_room(masks[m] & below_top), *others])))
         for k, room in candidates:
             j, i = np.unravel_index(int(np.argmax(room)), room.shape)
             if room[j, i] >= 1.0:

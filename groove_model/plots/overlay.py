@@ -113,7 +113,8 @@ def _draw_frame(ax, frame, ks: list, scale: float, special_points: bool,
     rank = ks.index(k)
     width = 0.9 + 1.6 * rank / max(1, len(ks) - 1) if len(ks) > 1 else 1.5
     colour = _COLOURS[rank % len(_COLOURS)]
-    artists, label = [], f"k = {k_text(k)}"
+    artists: list = []
+    label: str | None = f"k = {k_text(k)}"
     for name, style in LINESTYLES.items():
         rows = _drawn_rows(frame, name, physical_only)
         if not len(rows):

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import matplotlib
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -177,7 +178,7 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
     codes = classify_cells(params, n)
     artists = {"image": _shade(ax, codes, top), "segments": _draw_axis(ax, params, scale),
                "boundaries": [], "seeds": [], "legend": None, "boundary_set": None}
-    boundary_handles = []
+    boundary_handles: list = []
     if boundaries:
         boundary_set = boundary_set if boundary_set is not None else trace_boundaries(params)
         if not boundary_set.ok:
@@ -210,7 +211,7 @@ def _draw_axis(ax, params: Parameters, scale: float) -> list:
     top = _HALF_PI * scale
     lines = ax.plot([0.0, top, top, 0.0], [0.0, 0.0, top, 0.0], color="0.35", lw=0.8, zorder=1)
     g_lim = params.gamma_limit * scale
-    for name, (a, b) in zip(_AXIS_SEGMENTS, ((0.0, g_lim), (g_lim, top))):
+    for name, (a, b) in zip(_AXIS_SEGMENTS, ((0.0, g_lim), (g_lim, top)), strict=True):
         lines += ax.plot([a, b], [0.0, 0.0], color=CATEGORY_COLOURS[name], lw=4.5,
                          solid_capstyle="butt", zorder=2)
     return lines
@@ -225,7 +226,8 @@ def _overlay_boundaries(ax, boundary_set, degrees: bool) -> tuple[list, list]:
     if drawn is None:
         return artists, []
     present = _drawn_entries(boundary_set)
-    handles = [(h, t.get_text()) for h, t in zip(drawn.legend_handles, drawn.get_texts())
+    handles = [(h, t.get_text())
+               for h, t in zip(drawn.legend_handles, drawn.get_texts(), strict=True)
                if t.get_text() in present]
     drawn.remove()
     return artists, handles
@@ -259,7 +261,8 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list):
     """Each region present in words, the two axis segments, then the boundaries' entries."""
     present = set(np.unique(codes[codes != OUTSIDE]).tolist())
     present |= {CATEGORY_CODE[name] for name in _AXIS_SEGMENTS}
-    handles, labels = [], []
+    handles: list[Artist] = []
+    labels: list[str] = []
     for code, name in enumerate(CATEGORIES):
         if code not in present:
             continue

@@ -15,8 +15,17 @@ from ...model.equilibrium import double_rolling_state, solve_equilibrium
 from ...model.lines import bracketed_root, dr_limit_delta, dr_margins
 from ...model.parameters import Parameters, k_text
 from ..regimes import CATEGORIES
-from .context import (HALF_PI, IDENTITY_TOL, SQRT2, Context, distance, first_special_point, k_label,
-                      rotation_changes, sign_changes)
+from .context import (
+    HALF_PI,
+    IDENTITY_TOL,
+    SQRT2,
+    Context,
+    distance,
+    first_special_point,
+    k_label,
+    rotation_changes,
+    sign_changes,
+)
 from .registry import Finding, applicable, claim, not_applicable, verdict
 from .report import Counterexample
 
@@ -208,7 +217,7 @@ def check_delta0_validity(ctx: Context) -> Finding:
         brackets = not (last > math.atan(k) or first_out < math.atan(k))
         # Exactly at arctan k the ratio equals k up to round-off: either answer is right.
         decided = np.abs(g - math.atan(k)) > 1e-12
-        ok &= brackets and bool(np.all(dr[decided] == (g <= math.atan(k))[decided]))
+        ok &= brackets and bool(np.all((dr == (g <= math.atan(k)))[decided]))
         per_k[k_label(k)] = {"last double-rolling gamma": last, "arctan k": math.atan(k),
                              "first gamma with T/N > k": first_out}
     return Finding(verdict(ok), numbers=per_k)

@@ -16,8 +16,19 @@ from scipy import optimize
 from ...model.equilibrium import double_rolling_state, rolling_sliding_state, solve_equilibrium
 from ...model.lines import rs_limit_delta, rs_no_roll_gamma
 from ...model.parameters import Parameters
-from .context import (CORNER, HALF_PI, IDENTITY_TOL, POINT_TOL, SQRT2, VIOLATION, Context, distance,
-                      k_label, rotation_changes, sign_changes)
+from .context import (
+    CORNER,
+    HALF_PI,
+    IDENTITY_TOL,
+    POINT_TOL,
+    SQRT2,
+    VIOLATION,
+    Context,
+    distance,
+    k_label,
+    rotation_changes,
+    sign_changes,
+)
 from .registry import Finding, applicable, claim, not_applicable, verdict
 from .report import Counterexample
 
@@ -75,7 +86,7 @@ def check_rs_mu_formula(ctx: Context) -> Finding:
         g = rng.uniform(0.02, HALF_PI - 0.02, 300)
         d = rng.uniform(0.0, 0.98, 300) * g
         errs = []
-        for gi, di in zip(g, d):
+        for gi, di in zip(g, d, strict=True):
             mu_fb, _, _ = _force_balance_mu(gi, di, k)
             errs.append(abs(mu_fb / _mu(gi + di, gi - di, k) - 1.0))
         per_k[k_label(k)] = {"max relative difference": float(max(errs))}
