@@ -17,10 +17,10 @@ Example
 """
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
+from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .events import Event, box_events
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian
-from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .tracker import trace
 
