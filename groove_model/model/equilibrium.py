@@ -409,7 +409,7 @@ def rolling_sliding_state(gamma, delta, params: Parameters) -> dict:
     ), shape)
 
 
-def regime_validity(gamma, delta, k_or_params):
+def regime_validity(gamma, delta, k):
     """Where each regime's own conditions hold, evaluated independently of the other.
 
     Returns
@@ -419,7 +419,7 @@ def regime_validity(gamma, delta, k_or_params):
         rolling sliding. On ``delta = 0`` beyond ``arctan(k/c)`` the rolling-sliding state is
         the double-sliding one (both walls at ``T = kN``).
     """
-    params = Parameters.coerce(k_or_params)
+    params = Parameters.coerce(k)
     gamma, delta = check_domain(gamma, delta)
     dr = double_rolling_state(gamma, delta, params)
     rs = rolling_sliding_state(gamma, delta, params)
@@ -431,7 +431,7 @@ def regime_validity(gamma, delta, k_or_params):
     return dr_valid, rs_valid
 
 
-def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
+def solve_equilibrium(gamma, delta, k) -> Equilibrium:
     """The equilibrium the paper predicts at ``(gamma, delta)`` for friction ``k``.
 
     Double rolling where it is valid (``T/N <= k`` on both walls), double sliding on
@@ -442,8 +442,9 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     ----------
     gamma, delta : float or array_like
         Half-sum and half-difference of the wall angles, radians, ``0 <= delta <= gamma <= pi/2``.
-    k_or_params : float or Parameters
-        Friction coefficient, finite and > 0, or a full parameter object.
+    k : float or Parameters
+        Friction coefficient, finite and > 0, or a full parameter object
+        (``solve_equilibrium(0.6, 0.2, k=1.0)``).
 
     Returns
     -------
@@ -458,7 +459,7 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
         If the bracketed double-rolling solve fails at a point of the open groove (a bug, never
         expected: the bracket is proven valid there).
     """
-    params = Parameters.coerce(k_or_params)
+    params = Parameters.coerce(k)
     scalar = np.ndim(gamma) == 0 and np.ndim(delta) == 0
     gamma, delta = check_domain(gamma, delta)
     gamma, delta = np.atleast_1d(gamma), np.atleast_1d(delta)
