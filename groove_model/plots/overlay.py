@@ -163,8 +163,9 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     path = Path(path)
     stem = path.with_suffix("") if path.suffix.lower() in (".png", ".svg", ".pdf") else path
     frames = [_frame(b) for b in boundary_sets]
-    # The axes' height follows the data (equal aspect); legend, title and labels need ~2 in.
-    fig = Figure(figsize=(7.0, 2.0 + 6.2 * delta_top(frames) / _HALF_PI), layout="constrained")
+    # The axes' height follows the data (equal aspect, 6.3 in for pi/2); legend, title and
+    # axis labels need about 2.1 in.
+    fig = Figure(figsize=(7.0, 2.1 + 6.3 * delta_top(frames) / _HALF_PI), layout="constrained")
     ax = fig.subplots()
     draw_boundaries(ax, boundary_sets, degrees=degrees)
     params = [b.params or Parameters(b.k) if isinstance(b, BoundarySet)
@@ -180,6 +181,5 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
         target = stem.parent / f"{stem.name}.{fmt}"
         with matplotlib.rc_context({"svg.hashsalt": "groove"}):
             written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=150, bbox_inches="tight", pad_inches=0.1,
-                metadata={"Date": None} if f == "svg" else None)))
+                tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
     return written
