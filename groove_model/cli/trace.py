@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import hashlib
 import logging
 import sys
 
@@ -55,7 +54,10 @@ def overlay_name(ks) -> str:
     """The default overlay name: ``boundaries_k1_k10``, or for many ``k`` (a name longer than
     :data:`MAX_FIGURE_NAME`) ``boundaries_{count}k_{min}-{max}_{hash}``, where the hash of the
     exact values tells different sets of ``k`` apart."""
-    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    # Imported here, not at the top: the model loads numpy, and neither it nor hashlib is
+    # needed by `groove --help`.
+    import hashlib
+
     from ..model.parameters import k_text
 
     texts = [k_text(k) for k in ks]
