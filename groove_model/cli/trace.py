@@ -54,11 +54,10 @@ def overlay_name(ks) -> str:
     """The default overlay name: ``boundaries_k1_k10``, or for many ``k`` (a name longer than
     :data:`MAX_FIGURE_NAME`) ``boundaries_{count}k_{min}-{max}_{hash}``, where the hash of the
     exact values tells different sets of ``k`` apart."""
-    # Imported here, not at the top: the model loads numpy, and neither it nor hashlib is
-    # needed by `groove --help`.
+    # Imported here, not at the top: `groove --help` needs neither hashlib nor the model.
     import hashlib
 
-    from ..model.parameters import k_text
+    from ..model.parameters import k_text  # loads numpy
 
     texts = [k_text(k) for k in ks]
     name = "boundaries_" + "_".join(f"k{t}" for t in texts)
