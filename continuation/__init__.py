@@ -18,11 +18,11 @@ Example
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
 from .codim2 import Codim2Curve, Codim2Kind, Codim2Point, follow_event, follow_fold
+from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .events import Event, box_events
 from .family import Family
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian
-from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .tracker import trace
 

@@ -76,7 +76,7 @@ def branch_tangents(problem: Problem, x_bp: np.ndarray) -> tuple[np.ndarray, np.
     return _branch_tangents(Evaluator(problem), as_vector("x_bp", x_bp))
 
 
-def _branch_tangents(evaluator: Evaluator, x: np.ndarray):
+def _branch_tangents(evaluator: Evaluator, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     J = evaluator.jacobian(x)
     n = J.shape[0]
     if J.shape != (n, x.size) or not np.isfinite(J).all():

@@ -176,14 +176,14 @@ def correct(
     H = evaluator.residual(x) if residual is None else residual
     if not all_finite(H):
         return Correction(False, NON_FINITE, x, None, 0.0, math.inf, 0, 0.0, 0.0)
-    J = evaluator.jacobian(x) if jacobian is None else jacobian
+    J: np.ndarray | None = evaluator.jacobian(x) if jacobian is None else jacobian
     rhs = np.empty(n1)
     first = 0.0
     contraction = 0.0
     previous = math.inf
     factors = None
     # the last iterate with max|H| <= tol: the answer if a later step fails
-    fallback = None
+    fallback: Correction | None = None
 
     def failure(reason, rnorm, k, rate=None):
         if fallback is not None and accept_fallback:
@@ -232,12 +232,12 @@ def correct(
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
         if rnorm <= tol:
-            converged = _with_tangent(factors, x, rnorm, k, first, contraction)
-            if converged is None:
+            within = _with_tangent(factors, x, rnorm, k, first, contraction)
+            if within is None:
                 return failure(SINGULAR, rnorm, k)
             if small:
-                return converged
-            fallback = converged
+                return within
+            fallback = within
         if length > max_correction:
             return failure(TOO_FAR, rnorm, k)
         if k > 0 and not small and dnorm > newton.max_contraction * previous:

@@ -8,8 +8,9 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -137,6 +138,7 @@ class _Offset:
 
 
 def _bounds(which: str, bounds) -> dict[int, float]:
+    items: Iterable[tuple[Any, Any]]
     if isinstance(bounds, Mapping):
         items = bounds.items()
     else:

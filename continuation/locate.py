@@ -16,6 +16,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Callable, Sequence
+from typing import cast
 
 import numpy as np
 
@@ -173,7 +174,7 @@ def _critical_points(c) -> list[float]:
 
 def _sign_changes(values: Sequence[float]) -> int:
     signs = [v > 0.0 for v in values if v != 0.0]
-    return sum(1 for p, q in zip(signs, signs[1:]) if p != q)
+    return sum(1 for p, q in zip(signs, signs[1:], strict=False) if p != q)
 
 
 def _split_point(c, f_lo: float, f_hi: float) -> float | None:
@@ -360,7 +361,7 @@ class StepScan:
         nodes = self.nodes if nodes is None else nodes
         out = []
         # every interval between the nodes found so far (earlier scans of the step left some)
-        stack = list(zip(nodes, nodes[1:]))[::-1]
+        stack = list(zip(nodes, nodes[1:], strict=False))[::-1]
         while stack:
             lo, hi = stack.pop()
             c = model(lo, hi)
@@ -410,7 +411,7 @@ class Located:
 def locate_zero(
     evaluator: Evaluator,
     options: Options,
-    function: Callable[[Correction], float],
+    function: Callable[..., float],
     start,
     end,
     f_start: float,
@@ -610,7 +611,7 @@ def refine_branch_point(
     the residual left by the arc.
     """
     s_star = located.s
-    distance = 3e-4 * (1.0 + max_abs(located.correction.x))
+    distance = 3e-4 * (1.0 + max_abs(cast(Correction, located.correction).x))
     nodes = []
     for s in (s_star - distance, s_star + distance):
         h = end.s - start.s

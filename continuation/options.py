@@ -172,11 +172,11 @@ class Options:
 
 
 def _check_positive_finite(name: str, value: object) -> None:
-    if not (isinstance(value, numbers.Real) and 0 < value < math.inf):
+    if not (isinstance(value, numbers.Real) and 0 < float(value) < math.inf):
         raise ValueError(f"Options.{name} must be a finite number > 0, got {value!r}")
 
 
 def _check_int(name: str, value: object, minimum: int) -> None:
     if not (isinstance(value, numbers.Integral) and not isinstance(value, bool)
-            and value >= minimum):
+            and int(value) >= minimum):
         raise ValueError(f"Options.{name} must be an integer >= {minimum}, got {value!r}")

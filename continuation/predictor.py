@@ -100,9 +100,9 @@ def extrapolate(nodes: Sequence, h: float):
     if u > 2.0:
         a = nodes[-2]
         q = 3.0 * u * u
-        weights = ((1.0 - q, h + 2.0 * span * u * u, q, span * u * u),
-                   (-6.0 * u / span, 1.0 + 4.0 * u, 6.0 * u / span, 2.0 * u))
-        vectors = (b.x, b.tangent, a.x, a.tangent)
+        weights = ([1.0 - q, h + 2.0 * span * u * u, q, span * u * u],
+                   [-6.0 * u / span, 1.0 + 4.0 * u, 6.0 * u / span, 2.0 * u])
+        vectors = [b.x, b.tangent, a.x, a.tangent]
         order = 3
     else:
         z = [(node.s - b.s) / span for node in nodes]

@@ -194,7 +194,8 @@ def check_jacobian(
         residual = problem_or_residual
         names = Problem(residual)
     if jacobian is None:
-        raise ValueError("check_jacobian needs a jacobian: the problem has none and none was passed")
+        raise ValueError("check_jacobian needs a jacobian: the problem has none and none was "
+                         "passed")
     if rtol < 0 or atol < 0:
         raise ValueError(f"rtol and atol must be >= 0, got rtol={rtol!r}, atol={atol!r}")
     x = np.asarray(x, dtype=float)
@@ -243,8 +244,8 @@ class Evaluator:
         self.jacobian_evals = 0
         self._residual = problem.residual
         self._jacobian = problem.jacobian
-        self._residual_shape = None
-        self._jacobian_shape = None
+        self._residual_shape: tuple[int, ...] | None = None
+        self._jacobian_shape: tuple[int, ...] | None = None
 
     def expect(self, n1: int) -> None:
         """Check every later result against ``n + 1 = n1`` unknowns."""

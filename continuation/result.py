@@ -263,7 +263,7 @@ class Curve:
             If the coordinate is out of range, the curve never takes the value,
             or a correction fails (at a fold in this coordinate).
         """
-        self._require_problem()
+        problem = self._require_problem()
         n1 = self.x.shape[1] if self.x.ndim == 2 else 0
         if not (isinstance(coordinate, (int, np.integer)) and 0 <= coordinate < n1):
             raise ValueError(f"coordinate must be in [0, {n1 - 1}], got {coordinate!r}")
@@ -280,24 +280,26 @@ class Curve:
                 point, _ = hermite(self.x[i], self.tangents[i], self.x[i + 1],
                                    self.tangents[i + 1], h, sigma)
                 points.append(self._correct(point, border, float(value),
-                                            f"{self.problem.coordinate_name(coordinate)}="
+                                            f"{problem.coordinate_name(coordinate)}="
                                             f"{value!r}"))
         if not points:
             low, high = (float(column.min() + value), float(column.max() + value)) \
                 if column.size else (math.nan, math.nan)
             raise ValueError(
-                f"{self.problem.coordinate_name(coordinate)} never equals {value!r} on the "
+                f"{problem.coordinate_name(coordinate)} never equals {value!r} on the "
                 f"curve; it ranges over [{low!r}, {high!r}]"
             )
         return points[0] if len(points) == 1 else points
 
-    def _require_problem(self) -> None:
+    def _require_problem(self) -> Problem:
         if self.problem is None:
             raise ValueError("dense output needs the curve's problem, but Curve.problem is None")
+        return self.problem
 
     def _correct(self, point, border, target, where) -> np.ndarray:
         options = self.options or Options()
-        result = correct(Evaluator(self.problem), point, border, options.locate_newton, target=target,
+        result = correct(Evaluator(self._require_problem()), point, border,
+                         options.locate_newton, target=target,
                          need_tangent=False)
         if not result.ok:
             raise ValueError(f"could not correct the point at {where} onto the curve: "

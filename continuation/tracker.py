@@ -9,7 +9,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
-from typing import NamedTuple
+from typing import NamedTuple, cast
 
 import numpy as np
 
@@ -68,7 +68,7 @@ class _Run:
     def node(self, x, s, tangent, det, residual, iterations) -> Node:
         """A curve point with its event values; :class:`EventNotFinite` if one is not finite."""
         values = [event_value(event, x, self.problem.describe) for event in self.events]
-        for event, value in zip(self.events, values):
+        for event, value in zip(self.events, values, strict=True):
             if not math.isfinite(value):
                 raise EventNotFinite(f"event '{event.name}' is {value!r} at "
                                      f"x={self.problem.describe(x)}")
@@ -257,7 +257,7 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
         stepper = _Stepper(run, start)
         while not stepper.check_terminated():
             stepper.step()
-        return run.curve(stepper.status, stepper.message, n1)
+        return run.curve(cast(Status, stepper.status), stepper.message, n1)
     except (CallbackError, CallbackShapeError) as error:
         # the user's function failed: the exception carries what was traced before
         error.curve = run.curve(Status.CALLBACK_FAILED, str(error), n1, raise_failure=False)
@@ -583,7 +583,7 @@ def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
         terminal = next((item for item in found if item.terminal), None)
         end = None
         if terminal is not None and terminal.located.node is None:
-            c = terminal.located.correction
+            c = cast(Correction, terminal.located.correction)
             end = Node(c.x, terminal.located.s, c.tangent, c.det, c.residual, c.iterations,
                        [event_value(e, c.x, describe) for e in run.events])
         elif terminal is not None:
@@ -645,7 +645,7 @@ def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint 
         elif located.s == previous_s and len(run.s) - 1 != a_index:
             index = len(run.s) - 1
         else:
-            c = located.correction if located.node is None else located.node
+            c = cast(Correction, located.correction) if located.node is None else located.node
             # the root finder's variable is the Hermite parameter; report arclength
             angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
             s = min(b.s, a.s + arc_length(c.x - a.x, angle))
@@ -684,7 +684,7 @@ def _fold_inconsistency(run: _Run) -> str:
 
 
 def _sign_changes(values: list[float]) -> int:
-    return sum(1 for p, q in zip(values, values[1:]) if (p > 0.0) != (q > 0.0))
+    return sum(1 for p, q in zip(values, values[1:], strict=False) if (p > 0.0) != (q > 0.0))
 
 
 def _append_end(run: _Run, a_index: int, b: Node) -> int:

@@ -38,6 +38,9 @@ Layout
 
 import importlib
 
+#: The package's version (also ``groove --version``; pyproject.toml reads it from here).
+__version__ = "0.1.0"
+
 # Where each public name lives. They are imported on first use (PEP 562), not here, because
 # the ``groove`` command line lives in this package: `groove --help` should not wait for
 # scipy, which the solver imports.

@@ -60,7 +60,7 @@ def test_quotes_are_verbatim_from_the_paper(report):
 
 def test_claim_rejects_an_unknown_verdict():
     with pytest.raises(ValueError, match="verdict = 'maybe' is not one of holds, holds with "
-                                         "qualification, fails"):
+                                         "qualification, fails, inconclusive, not applicable"):
         Claim("x", "s", "q", "m", "maybe", "summary")
 
 
@@ -239,6 +239,55 @@ def test_audit_rejects_bad_friction():
         run_audit((1.0, 0.0))
     with pytest.raises(ValueError, match="ks is empty"):
         run_audit(())
+
+
+# --------------------------------------------------------------------------------------------
+# Verdicts: "fails" only with a counterexample, "not applicable" with its reason
+# --------------------------------------------------------------------------------------------
+
+#: The claims about one side of k = sqrt 2, and that side.
+ONE_SIDED = {"rs_no_roll_small_k_ends": lambda k: k < SQRT2,
+             "rs_no_roll_large_k_ends": lambda k: k > SQRT2,
+             "dr_no_roll_sides": lambda k: k > SQRT2}
+
+
+@pytest.mark.parametrize("k", [0.1, 1.0, 2.0, 10.0, 100.0])
+def test_every_fail_is_a_counterexample_shown_by_the_command(k, capsys):
+    assert run_cli(["audit", "-k", str(k)]) == 0
+    text = capsys.readouterr().out
+    report = run_audit((k,), use_tracer=False)
+    fails = [c for c in report.claims if c.verdict == "fails"]
+    assert {c.id for c in fails} == {"rs_mu_above_k_if_shallower_slides",
+                                     "rs_delta0_upsilon_zero"}
+    for c in fails:
+        assert c.counterexample is not None and c.counterexample.k == k
+        assert f"counterexample to {c.id}: k = " in text
+    for claim_id, about in ONE_SIDED.items():
+        c = report.claim(claim_id)
+        assert (c.verdict == "not applicable") == (not about(k)), (claim_id, c.verdict)
+        if c.verdict == "not applicable":
+            assert c.summary.startswith("Not applicable: about k ") and c.counterexample is None
+            assert re.search(rf"not applicable\s+{claim_id}\s+Not applicable: about k", text)
+    assert all(c.verdict != "inconclusive" for c in report.claims)
+
+
+def test_claims_about_one_side_of_sqrt2_name_the_k_they_skip():
+    report = run_audit((1.0, 10.0), use_tracer=False)
+    large = report.claim("rs_no_roll_large_k_ends")
+    assert large.verdict == "holds"
+    assert large.numbers["not applicable (the statement is about k > sqrt 2)"] == "k = 1"
+    assert set(large.numbers) - {"not applicable (the statement is about k > sqrt 2)"} \
+        == {"k = 10"}
+
+
+def test_a_fail_without_counterexample_is_inconclusive():
+    from groove_model.analysis.audit.registry import CLAIM_TEXTS, Finding
+    from groove_model.analysis.audit.report import Verdict
+
+    text = next(t for t in CLAIM_TEXTS if t.id == "dr_contacts_opposite")
+    c = text.state(Finding(Verdict.FAILS, numbers={"k = 1": {"rows violating": 3}}))
+    assert c.verdict == "inconclusive" and c.summary.startswith("Inconclusive")
+    assert c.numbers == {"k = 1": {"rows violating": 3}}
 
 
 # --------------------------------------------------------------------------------------------

@@ -2,22 +2,76 @@
 
 import json
 import math
+import re
 
 import pytest
 
 from groove_model.cli.main import main
 
-KEYS = {"regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
-        "T_over_N_L", "T_over_N_R", "d_L", "rotation"}
+from groove_model.model.equilibrium import solve_equilibrium
+
+KEYS = {"k", "compliance", "regime", "rotation", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R",
+        "upsilon", "T_over_N_L", "T_over_N_R", "N_L_over_N_R", "d_L", "d_R"}
 
 
 def test_solve_json(capsys):
-    assert main(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1", "--json"]) == 0
+    assert main(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1.1", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert set(out) == KEYS
+    assert out["k"] == 1.1 and out["compliance"] == 1.0
     assert out["regime"] == "rolling_sliding" and out["rotation"] == "clockwise"
-    assert out["T_over_N_L"] == pytest.approx(1.0)
+    assert out["T_over_N_L"] == pytest.approx(1.1)
     assert out["theta_L"] == pytest.approx(0.8) and out["theta_R"] == pytest.approx(0.4)
+    eq = solve_equilibrium(0.6, 0.2, 1.1)
+    assert out["d_R"] == eq.d_R == 0.0 and out["d_L"] == eq.d_L > 0.0
+
+
+def _printed_angles(text: str) -> tuple[str, str]:
+    """``gamma`` and ``delta`` in radians as ``groove solve`` printed them."""
+    match = re.search(r"gamma = (\S+) rad .*delta = (\S+) rad", text)
+    assert match, text
+    return match.group(1), match.group(2)
+
+
+@pytest.mark.parametrize("argv", [
+    ["--gamma", "90", "--delta", "0", "--deg"],          # gamma = pi/2 exactly
+    ["--gamma", "90", "--delta", "90", "--deg"],         # the corner (pi/2, pi/2)
+    ["--gamma", "0.6", "--delta", "0.2"],
+    ["--gamma", "1.2345678901234567", "--delta", "0.333333333333333"],
+])
+def test_printed_angles_re_enter(argv, capsys):
+    assert main(["solve", "-k", "1", *argv]) == 0
+    first = capsys.readouterr().out
+    gamma, delta = _printed_angles(first)
+    assert main(["solve", "-k", "1", "--gamma", gamma, "--delta", delta]) == 0
+    assert capsys.readouterr().out == first
+
+
+def test_json_angles_re_enter(capsys):
+    assert main(["solve", "-k", "1", "--gamma", "90", "--delta", "30", "--deg", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["gamma"] == math.pi / 2
+    assert main(["solve", "-k", "1", "--gamma", repr(out["gamma"]), "--delta",
+                 repr(out["delta"]), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == out
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--gamma", "95", "--delta", "10"],
+     "gamma = 95.0 deg is outside the allowed range 0 <= gamma <= 90 deg"),
+    (["--gamma", "40", "--delta", "50"],
+     "delta = 50.0 deg is outside the allowed range 0 <= delta <= gamma (gamma = 40.0 deg)"),
+    (["--gamma", "40", "--delta", "-1"],
+     "delta = -1.0 deg is outside the allowed range 0 <= delta <= gamma (gamma = 40.0 deg)"),
+    (["--gamma", "-5", "--delta", "0"],
+     "gamma = -5.0 deg is outside the allowed range 0 <= gamma <= 90 deg"),
+])
+def test_degree_input_is_checked_in_degrees(argv, message, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["solve", "-k", "1", "--deg", *argv])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert message in err and "rad" not in err
 
 
 def test_solve_degrees_and_dimensional(capsys):

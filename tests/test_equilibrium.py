@@ -183,3 +183,12 @@ def test_dimensional_results_refuse_the_closed_groove():
     eq = solve_equilibrium(0.5 * math.pi, 0.5 * math.pi, 1.0)
     with pytest.raises(ValueError, match=r"no dimensional equilibrium at gamma = 1.5707963267948966 rad"):
         dimensional_state(eq, 0.01, 2e11, 0.3, 0.033)
+
+
+def test_friction_is_passed_as_k():
+    from groove_model import Parameters, regime_validity, solve_equilibrium
+
+    by_keyword = solve_equilibrium(0.6, 0.2, k=1.0)
+    assert by_keyword == solve_equilibrium(0.6, 0.2, 1.0)
+    assert by_keyword == solve_equilibrium(0.6, 0.2, k=Parameters(1.0))
+    assert regime_validity(0.6, 0.2, k=1.0) == regime_validity(0.6, 0.2, 1.0)

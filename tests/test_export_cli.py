@@ -10,7 +10,13 @@ import pytest
 from groove_model import tracing as tracer_module
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.cli.main import main
-from groove_model.io.export import atomic_write, read_boundaries_csv, write_boundary_set
+from groove_model.cli.trace import overlay_name
+from groove_model.io.export import (
+    atomic_write,
+    boundary_file_names,
+    read_boundaries_csv,
+    write_boundary_set,
+)
 from groove_model.model.parameters import Parameters
 from groove_model.tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, trace_boundaries
 
@@ -77,21 +83,71 @@ def test_trace_command_writes_csvs_and_figures(tmp_path, capsys):
     assert "k = 2" in capsys.readouterr().out
 
 
-def test_trace_command_failure_writes_nothing(tmp_path, monkeypatch, capsys):
+def _failing_for(ks, monkeypatch):
+    """Make the tracer fail (rs_no_roll) for the given k."""
     real = tracer_module.trace_boundaries
 
     def failing(k, **kwargs):
         bs = real(k, **kwargs)
+        if getattr(k, "k", k) not in ks:  # k or Parameters(k, compliance)
+            return bs
         curve = bs.curves["rs_no_roll"]
         broken = type(curve)(**{**curve.__dict__, "ok": False,
                                 "status": "the step size fell below its minimum: at step 7"})
         return type(bs)(k=bs.k, curves={**bs.curves, "rs_no_roll": broken})
 
     monkeypatch.setattr(tracer_module, "trace_boundaries", failing)
+
+
+def test_trace_command_failure_writes_nothing(tmp_path, monkeypatch, capsys):
+    _failing_for((1.0, 3.0), monkeypatch)
     assert main(["trace", "-k", "1", "-k", "3", "--out", str(tmp_path / "out")]) == 1
     err = capsys.readouterr().err
-    assert "rs_no_roll: the step size fell below its minimum" in err and "nothing written" in err
+    assert "k = 1: rs_no_roll: the step size fell below its minimum" in err
+    assert "k = 3: nothing written for this k" in err and "no overlay" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_trace_command_writes_the_k_that_succeeded(tmp_path, monkeypatch, capsys):
+    _failing_for((3.0,), monkeypatch)
+    assert main(["trace", "-k", "1", "3", "0.5", "--out", str(tmp_path)]) == 1
+    captured = capsys.readouterr()
+    assert "k = 3: rs_no_roll: the step size fell below its minimum" in captured.err
+    assert "no overlay: the boundaries of k = 3 failed" in captured.err
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "boundaries_k0.5.csv", "boundaries_k1.csv", "special_points_k0.5.csv",
+        "special_points_k1.csv"]
+    assert "k = 1: " in captured.out and "k = 0.5: " in captured.out
+
+
+def test_close_k_get_their_own_files(tmp_path):
+    assert main(["trace", "-k", "1.0000001", "1.0000002", "--out", str(tmp_path),
+                 "--no-figure"]) == 0
+    for k in ("1.0000001", "1.0000002"):
+        frame = read_boundaries_csv(tmp_path / f"boundaries_k{k}.csv")
+        assert set(frame["k"]) == {float(k)}
+        assert (tmp_path / f"special_points_k{k}.csv").exists()
+
+
+def test_many_k_get_a_short_distinct_overlay_name():
+    ks = list(np.geomspace(1e-2, 1e3, 200))
+    name = overlay_name(ks)
+    assert len(name) <= 60 and name.startswith("boundaries_200k_0.01-1000_")
+    assert overlay_name(ks[:-1] + [ks[-1] * (1 + 1e-15)]) != name
+    assert overlay_name([1.0, 10.0]) == "boundaries_k1_k10"
+    assert boundary_file_names(1.0000001) == ("boundaries_k1.0000001.csv",
+                                              "special_points_k1.0000001.csv")
+    assert boundary_file_names(1e-5) == ("boundaries_k1e-05.csv", "special_points_k1e-05.csv")
+
+
+def test_trace_command_writes_the_short_overlay_name(tmp_path, monkeypatch):
+    from groove_model.cli import trace as trace_command
+
+    monkeypatch.setattr(trace_command, "MAX_FIGURE_NAME", 20)
+    assert main(["trace", "-k", "0.5", "2", "7", "--out", str(tmp_path)]) == 0
+    figures = sorted(p.name for p in tmp_path.glob("*.png"))
+    assert figures == [overlay_name([0.5, 2.0, 7.0]) + ".png"]
+    assert figures[0].startswith("boundaries_3k_0.5-7_")
 
 
 @pytest.mark.parametrize("k", ["0", "-1", "nan", "inf", "x"])
@@ -172,3 +228,51 @@ def test_overlay_name_keeps_dots(tmp_path):
     assert main(["trace", "-k", "0.5", "-k", "2.5", "--out", str(tmp_path)]) == 0
     assert (tmp_path / "boundaries_k0.5_k2.5.png").exists()
     assert (tmp_path / "boundaries_k0.5_k2.5.svg").exists()
+
+
+def _csv_text(written, k=1):
+    out, _ = written
+    return pd.read_csv(out / f"boundaries_k{k}.csv", keep_default_na=False, dtype=str)
+
+
+def _plot_refused(paths, tmp_path, capsys) -> str:
+    target = tmp_path / "f.png"
+    with pytest.raises(SystemExit) as info:
+        main(["plot", *map(str, paths), "-o", str(target)])
+    assert info.value.code == 2
+    assert not target.exists()
+    return capsys.readouterr().err
+
+
+def test_plot_refuses_a_csv_with_several_k(written, tmp_path, capsys):
+    both = pd.concat([_csv_text(written, 1), _csv_text(written, 10)])
+    path = tmp_path / "both.csv"
+    both.to_csv(path, index=False)
+    err = _plot_refused([path], tmp_path, capsys)
+    assert "column k holds 2 values (1, 10); a boundaries CSV holds one k" in err
+
+
+def test_plot_refuses_the_same_k_twice(written, tmp_path, capsys):
+    out, _ = written
+    copy = tmp_path / "copy.csv"
+    copy.write_text((out / "boundaries_k1.csv").read_text())
+    err = _plot_refused([out / "boundaries_k1.csv", copy], tmp_path, capsys)
+    assert "both hold k = 1" in err
+
+
+@pytest.mark.parametrize("column, value, message", [
+    ("gamma", "1.6", "column gamma = '1.6' in data row 2 is outside the allowed range "
+                     "0 <= gamma <= pi/2"),
+    ("gamma", "-0.1", "column gamma = '-0.1' in data row 2 is outside the allowed range"),
+    ("delta", "-0.001", "column delta = '-0.001' in data row 2 is outside the allowed range "
+                        "0 <= delta <= gamma"),
+    ("delta", "1.5", "column delta = '1.5' in data row 2 is outside the allowed range "
+                     "0 <= delta <= gamma"),
+])
+def test_plot_refuses_points_outside_the_domain(column, value, message, written, tmp_path,
+                                                capsys):
+    frame = _csv_text(written)
+    frame.loc[1, column] = value
+    path = tmp_path / "bad.csv"
+    frame.to_csv(path, index=False)
+    assert message.replace("'", "") in _plot_refused([path], tmp_path, capsys).replace("'", "")

@@ -20,6 +20,7 @@ from groove_model.model.equilibrium import double_rolling_state, solve_equilibri
 from groove_model.model.lines import dr_limit_no_roll_point, dr_no_roll_line
 from groove_model.model.parameters import Parameters
 from groove_model.plots import regime_map
+from groove_model.plots.overlay import MARKER_LABELS, STYLE_LABELS
 from groove_model.plots.regime_map import (
     CATEGORY_COLOURS,
     CATEGORY_LABELS,
@@ -327,8 +328,9 @@ def test_map_legend_lists_only_what_is_drawn(traced):
         artists = draw_regime_map(ax, 1.0, n=100, boundary_set=traced[1.0], degrees=True)
         texts = [t.get_text() for t in artists["legend"].get_texts()]
         assert CATEGORY_LABELS["double_rolling_counterclockwise"] not in texts  # k < sqrt 2
-        assert r"$\upsilon = 0$ in DR" not in texts and "junction" not in texts
-        assert r"$\upsilon = 0$ in RS" in texts and "fold gamma" in texts
+        assert STYLE_LABELS["dr_no_roll"] not in texts
+        assert MARKER_LABELS["junction"] not in texts
+        assert STYLE_LABELS["rs_no_roll"] in texts and MARKER_LABELS["fold_gamma"] in texts
         assert ax.get_xlim()[1] == pytest.approx(90.0 * 1.02)
         assert "deg" in ax.get_xlabel()
     finally:

@@ -27,8 +27,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model.parameters import Compliance
-from ..tracing.atlas import DEFAULT_K_RANGE, DEFAULT_POISSON_RANGE, Atlas, trace_atlas, \
-    trace_atlas_in_poisson
+from ..tracing.atlas import (
+    DEFAULT_K_RANGE,
+    DEFAULT_POISSON_RANGE,
+    Atlas,
+    trace_atlas,
+    trace_atlas_in_poisson,
+)
 from ..tracing.topology import topology_table
 
 __all__ = ["DEFAULT_KS", "DEFAULT_POISSONS", "SHIFT_SAMPLES", "ComplianceStudy",

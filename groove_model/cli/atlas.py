@@ -5,7 +5,6 @@ from __future__ import annotations
 import sys
 
 from .common import (
-    COMPUTATION_ERRORS,
     EXIT_FAILED,
     EXIT_OK,
     UsageError,
@@ -13,6 +12,7 @@ from .common import (
     add_compliance_options,
     compliance_from,
     compliance_label,
+    computation_errors,
     friction,
     output_directory,
 )
@@ -68,7 +68,7 @@ def run(args) -> int:
     compliance = compliance_from(args)
     try:
         atlas = trace_atlas((args.k_min, args.k_max), compliance=compliance)
-    except COMPUTATION_ERRORS as exc:
+    except computation_errors() as exc:
         print(f"groove atlas: error: computation failed: {type(exc).__name__}: {exc}",
               file=sys.stderr)
         return EXIT_FAILED

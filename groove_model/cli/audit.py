@@ -6,13 +6,13 @@ import math
 import sys
 from pathlib import Path
 
-from ..analysis.audit.report import DEFAULT_KS
+from ..analysis.audit.defaults import DEFAULT_KS
 from .common import (
-    COMPUTATION_ERRORS,
     EXIT_FAILED,
     EXIT_OK,
     add_command,
-    friction,
+    add_friction,
+    computation_errors,
     output_directory,
 )
 
@@ -24,9 +24,12 @@ _EXAMPLES = """examples:
   groove audit -k 2 --json                      # the whole report as JSON on stdout
   groove audit --trace --out results/           # add the tracer's curves as a cross-check
 
-verdicts: 'holds', 'holds with qualification', 'fails' (with a counterexample); they are
-computed by the point solver and bracketed root finding, never written in. A paper claim
-that fails is a finding, not an error: the exit code is 0 when the audit itself ran.
+verdicts: 'holds', 'holds with qualification', 'fails' (always with a counterexample, printed
+below the list), 'inconclusive' (not confirmed at the check's resolution, but no point found
+where it is false), 'not applicable' (the statement is about other k, e.g. k > sqrt 2; the
+reason is printed). They are computed by the point solver and bracketed root finding, never
+written in. A paper claim that fails is a finding, not an error: the exit code is 0 when the
+audit itself ran.
 """
 
 
@@ -40,9 +43,9 @@ def add_parser(subparsers):
                     "checked, the computed verdict, the numbers, and for a failure a "
                     "counterexample (k, gamma, delta, values).",
         examples=_EXAMPLES)
-    p.add_argument("-k", action="extend", nargs="+", type=friction, dest="ks", metavar="K",
-                   help="friction coefficients (> 0), e.g. -k 1 10 or -k 1 -k 10 (default "
-                        + " ".join(f"{k:g}" for k in DEFAULT_KS) + ")")
+    add_friction(p, required=False,
+                 help="friction coefficients (> 0), e.g. -k 1 10 or -k 1 -k 10 (default "
+                      + " ".join(f"{k:g}" for k in DEFAULT_KS) + ")")
     p.add_argument("--out", metavar="DIR",
                    help="write claims.md and claims.json into DIR (created if needed)")
     p.add_argument("--json", action="store_true", help="print the report as JSON on stdout")
@@ -63,7 +66,7 @@ def run(args) -> int:
     out = output_directory(args.out) if args.out else None
     try:
         report = run_audit(ks, use_tracer=args.trace)
-    except COMPUTATION_ERRORS as exc:
+    except computation_errors() as exc:
         print(f"groove audit: error: computation failed: {type(exc).__name__}: {exc}",
               file=sys.stderr)
         return EXIT_FAILED
@@ -79,8 +82,11 @@ def run(args) -> int:
 
 def _summary(report) -> str:
     """One line per claim with its verdict, then each counterexample to a failing claim."""
+    # Imported here, not at the top: the model loads numpy (see `run`).
+    from ..model.parameters import k_text
+
     width = max(len(c.id) for c in report.claims)
-    lines = [f"audit of the paper's claims for k = {', '.join(f'{k:g}' for k in report.ks)}: "
+    lines = [f"audit of the paper's claims for k = {', '.join(map(k_text, report.ks))}: "
              + ", ".join(f"{n} {v}" for v, n in report.counts().items())
              + f" ({report.seconds:.1f} s)"]
     for c in report.claims:
@@ -88,7 +94,8 @@ def _summary(report) -> str:
     for c in report.claims:
         if c.counterexample is not None and c.verdict == "fails":
             ce = c.counterexample
-            lines.append(f"  counterexample to {c.id}: k = {ce.k:g}, gamma = {ce.gamma:.10g}, "
+            lines.append(f"  counterexample to {c.id}: k = {k_text(ce.k)}, "
+                         f"gamma = {ce.gamma:.10g}, "
                          f"delta = {ce.delta:.10g}: " + ", ".join(
                              f"{key} = {v:.6g}" if isinstance(v, float) and math.isfinite(v)
                              else f"{key} = {v}" for key, v in ce.values.items()))

@@ -9,8 +9,10 @@ adds ``--compliance RATIO`` and ``--poisson NU`` with one line in its ``add_pars
 ``add_compliance_options(p)``, and reads them in ``run`` with ``compliance_from(args)`` (a
 :class:`~groove_model.model.parameters.Compliance`, passed as ``Parameters(k, compliance)``);
 ``compliance_label(compliance)`` ends its file names (``""`` for the paper's law, ``_nu0.3``,
-``_c0.8``). ``groove trace``, ``map``, ``solve`` and ``atlas`` do so; a sweep over ``k`` adds
-them the same way.
+``_c0.8``).
+
+Nothing here imports numpy or the solver at module level: ``groove --help`` loads only this
+package (see ``computation_errors`` and ``friction``).
 """
 
 from __future__ import annotations
@@ -18,13 +20,12 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
-
-from ..model.parameters import POISSON_RANGE, Compliance, check_friction, check_poisson
+if TYPE_CHECKING:  # the model loads numpy, which `groove --help` does not need
+    from ..model.parameters import Compliance
 
 __all__ = [
-    "COMPUTATION_ERRORS",
     "EXIT_FAILED",
     "EXIT_OK",
     "EXIT_USAGE",
@@ -32,30 +33,49 @@ __all__ = [
     "UsageError",
     "add_command",
     "add_compliance_options",
+    "add_friction",
+    "add_verbose",
     "compliance_from",
     "compliance_label",
+    "computation_errors",
     "figure_target",
     "friction",
+    "one_friction",
     "output_directory",
     "poisson",
     "real",
 ]
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
-#: Errors of a computation (root finding, continuation, linear algebra): exit code 1.
-COMPUTATION_ERRORS = (ArithmeticError, RuntimeError, np.linalg.LinAlgError)
 FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+def computation_errors() -> tuple:
+    """Errors of a computation (root finding, continuation, linear algebra): exit code 1."""
+    # Imported here, not at the top: numpy is what `groove --help` should not wait for.
+    import numpy as np
+
+    return (ArithmeticError, RuntimeError, np.linalg.LinAlgError)
 
 
 class UsageError(Exception):
     """Bad input from the command line: message printed, exit code 2."""
 
 
+def add_verbose(parser: argparse.ArgumentParser) -> None:
+    """``-v``: log progress. Given to ``groove`` and to every command, so it goes before or
+    after the command's name; no default here, so a command's parser does not reset it."""
+    parser.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
+                        help="log progress on standard error")
+
+
 def add_command(subparsers, name: str, help: str, description: str,
                 examples: str) -> argparse.ArgumentParser:
     """Register one ``groove`` command whose help ends with its examples; returns its parser."""
-    return subparsers.add_parser(name, help=help, description=description, epilog=examples,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = subparsers.add_parser(name, help=help, description=description, epilog=examples,
+                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_verbose(parser)
+    return parser
 
 
 def friction(text: str) -> float:
@@ -66,10 +86,41 @@ def friction(text: str) -> float:
         raise argparse.ArgumentTypeError(
             f"friction coefficient k = {text!r} is not a number; k must be finite and > 0"
         ) from None
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_friction
+
     try:
         return check_friction(value)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "") -> None:
+    """``-k K [K ...]``, repeatable: every command reads ``-k 1 10`` and ``-k 1 -k 10`` alike.
+
+    The values go to ``args.ks`` (a list, in the order given; None when not given).
+    """
+    parser.add_argument("-k", action="extend", nargs="+", type=friction, dest="ks",
+                        metavar="K", required=required,
+                        help=help or "friction coefficients (> 0): -k 1 10 or -k 1 -k 10")
+
+
+def one_friction(args, command: str) -> float:
+    """The one ``k`` of a command that takes one.
+
+    Raises
+    ------
+    UsageError
+        If several different values were given.
+    """
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import k_text
+
+    ks = list(dict.fromkeys(args.ks))
+    if len(ks) != 1:
+        raise UsageError(f"{command} takes one friction coefficient, got k = "
+                         f"{', '.join(map(k_text, ks))}: run it once per k")
+    return ks[0]
 
 
 def real(name: str, allowed: str = "a finite number"):
@@ -123,6 +174,9 @@ def figure_target(text: str) -> tuple[Path, str]:
 
 def poisson(text: str) -> float:
     """Argument type of a Poisson ratio ``nu``: ``-1 < nu <= 1/2``."""
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import POISSON_RANGE, check_poisson
+
     try:
         value = float(text)
     except ValueError:
@@ -137,6 +191,9 @@ def poisson(text: str) -> float:
 
 def _ratio(text: str) -> float:
     """Argument type of a compliance ratio: a finite number > 0."""
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import Compliance
+
     try:
         return Compliance(float(text)).ratio
     except ValueError:
@@ -167,6 +224,9 @@ def add_compliance_options(parser, poisson_help: str = "") -> None:
 
 def compliance_from(args) -> Compliance:
     """The :class:`Compliance` the options of :func:`add_compliance_options` ask for."""
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import Compliance
+
     if getattr(args, "compliance", None) is not None:
         return Compliance(args.compliance)
     if getattr(args, "poisson", None) is not None:
@@ -176,9 +236,12 @@ def compliance_from(args) -> Compliance:
 
 def compliance_label(compliance: Compliance) -> str:
     """A file-name suffix for a compliance: ``""`` for the paper's, ``"_nu0.3"`` for one from a
-    Poisson ratio, ``"_c0.8"`` otherwise."""
+    Poisson ratio, ``"_c0.8"`` otherwise (values written exactly, as ``k`` is)."""
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import k_text
+
     if compliance.poisson is not None and compliance.poisson != 0.0:
-        return f"_nu{compliance.poisson:g}"
+        return f"_nu{k_text(compliance.poisson)}"
     if compliance.ratio == 1.0:
         return ""
-    return f"_c{compliance.ratio:g}"
+    return f"_c{k_text(compliance.ratio)}"

@@ -6,10 +6,10 @@ import sys
 from pathlib import Path
 
 from .common import (
-    COMPUTATION_ERRORS,
     EXIT_FAILED,
     EXIT_OK,
     add_command,
+    computation_errors,
     friction,
     output_directory,
     poisson,
@@ -59,7 +59,7 @@ def run(args) -> int:
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
     try:
         study = compliance_study(tuple(dict.fromkeys(args.poissons)), ks)
-    except COMPUTATION_ERRORS as exc:
+    except computation_errors() as exc:
         print(f"groove compliance: error: computation failed: {type(exc).__name__}: {exc}",
               file=sys.stderr)
         return EXIT_FAILED

@@ -8,10 +8,13 @@ from __future__ import annotations
 
 import argparse
 import logging
+import os
+import sys
 
+from .. import __version__
 from . import atlas, audit, compliance, plot, reproduce, solve, trace
 from . import map as regime_map
-from .common import EXIT_FAILED, EXIT_USAGE, UsageError
+from .common import EXIT_FAILED, EXIT_USAGE, UsageError, add_verbose
 
 __all__ = ["build_parser", "main"]
 
@@ -24,6 +27,7 @@ _EXAMPLES = """examples:
   groove atlas --out results/          # special points as curves in k, thresholds
   groove compliance --out results/compliance/
   groove reproduce                     # regenerate results/
+-k takes one or more values (-k 1 10 or -k 1 -k 10); -v works before or after the command.
 run 'groove COMMAND --help' for each command's options and examples"""
 
 
@@ -34,7 +38,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Regime boundaries of an elastic ball in a rigid V-groove "
                     "(Halsey & Ertas, 'A Ball in a Groove').",
         epilog=_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    parser.add_argument("--version", action="version",
+                        version=f"%(prog)s {__version__} (groove-continuation)")
+    add_verbose(parser)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for command in (solve, trace, plot, regime_map, audit, atlas, compliance):
         command.add_parser(sub)
@@ -46,10 +52,16 @@ def main(argv=None) -> int:
     """Entry point of the ``groove`` console script; returns the exit code."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    logging.basicConfig(level=logging.INFO if args.verbose else logging.WARNING,
+    verbose = getattr(args, "verbose", False)
+    logging.basicConfig(level=logging.INFO if verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return args.run(args)
+    except BrokenPipeError:
+        # The reader went away (`groove ... | head`): stop quietly, as other tools do, and keep
+        # Python from complaining about stdout when it exits.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_FAILED
     except UsageError as exc:
         parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
     except OSError as exc:

@@ -7,14 +7,15 @@ import logging
 import sys
 
 from .common import (
-    COMPUTATION_ERRORS,
     EXIT_FAILED,
     EXIT_OK,
     add_command,
     add_compliance_options,
+    add_friction,
     compliance_from,
+    computation_errors,
     figure_target,
-    friction,
+    one_friction,
 )
 
 __all__ = ["add_parser", "run"]
@@ -57,7 +58,7 @@ def add_parser(subparsers):
                     "the regions, overlay the traced boundaries, and write the figure. The "
                     "suffix of -o sets the format (.png, .svg, .pdf).",
         examples=_EXAMPLES)
-    p.add_argument("-k", required=True, type=friction, help="friction coefficient, > 0")
+    add_friction(p, help="friction coefficient (> 0); one per map")
     p.add_argument("-o", "--output", required=True, metavar="FIG.png",
                    help="figure file; its suffix (.png, .svg, .pdf) sets the format")
     p.add_argument("--svg", action="store_true",
@@ -77,29 +78,30 @@ def run(args) -> int:
     """Trace (unless ``--no-boundaries``), draw and write; 1 if a computation failed."""
     # Imported here, not at the top: the tracer and the map load the engine, scipy and
     # matplotlib, which `groove --help` and `groove solve` should not wait for.
-    from ..model.parameters import Parameters
+    from ..model.parameters import Parameters, k_text
     from ..plots.regime_map import save_regime_map
     from ..tracing import trace_boundaries
 
+    k = one_friction(args, "map")
+    params = Parameters(k, compliance_from(args))
     target, fmt = figure_target(args.output)
-    params = Parameters(args.k, compliance_from(args))
     formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))
     boundary_set = None
     try:
         if not args.no_boundaries:
-            log.info("tracing the boundaries for k = %g", args.k)
+            log.info("tracing the boundaries for k = %s", k_text(k))
             boundary_set = trace_boundaries(params)
             if not boundary_set.ok:
                 for failure in boundary_set.failures:
-                    print(f"groove map: error: k = {args.k:g}: {failure}", file=sys.stderr)
+                    print(f"groove map: error: k = {k_text(k)}: {failure}", file=sys.stderr)
                 print("groove map: nothing written: a boundary failed (see above)",
                       file=sys.stderr)
                 return EXIT_FAILED
         paths = save_regime_map(params, target, n=args.resolution, degrees=args.deg,
                                 formats=formats, boundary_set=boundary_set,
                                 boundaries=not args.no_boundaries)
-    except COMPUTATION_ERRORS as exc:
-        print(f"groove map: error: computation failed for k = {args.k:g}: "
+    except computation_errors() as exc:
+        print(f"groove map: error: computation failed for k = {k_text(k)}: "
               f"{type(exc).__name__}: {exc}", file=sys.stderr)
         return EXIT_FAILED
     for path in paths:

@@ -16,7 +16,10 @@ def add_parser(subparsers):
     """Register ``groove plot``; returns its parser."""
     p = add_command(
         subparsers, "plot", help="draw an overlay from existing boundaries CSV files",
-        description="Draw the boundaries stored in boundaries_k*.csv files onto one overlay.",
+        description="Draw the boundaries stored in boundaries_k*.csv files (one k per file, as "
+                    "groove trace writes them) onto one overlay. A file holding several k, a "
+                    "k given by two files, or a point outside 0 <= delta <= gamma <= pi/2 is "
+                    "refused (exit code 2) and nothing is drawn.",
         examples=_EXAMPLES)
     p.add_argument("files", nargs="+", metavar="FILE.csv", help="boundaries CSV files")
     p.add_argument("-o", "--output", required=True, metavar="FIG.png",
@@ -31,16 +34,23 @@ def run(args) -> int:
     # Imported here, not at the top: reading CSV and drawing load pandas and matplotlib, which
     # `groove --help` and `groove solve` should not wait for.
     from ..io.export import read_boundaries_csv
+    from ..model.parameters import k_text
     from ..plots.overlay import save_overlay
 
     frames = []
+    sources: dict[float, str] = {}
     for name in args.files:
         try:
-            frames.append(read_boundaries_csv(name))
+            frame = read_boundaries_csv(name)
         except OSError as exc:
             raise UsageError(f"cannot read {name}: {exc.strerror or exc}") from None
         except ValueError as exc:
             raise UsageError(str(exc)) from None
+        k = float(frame["k"].iloc[0])
+        if k in sources:
+            raise UsageError(f"{name} and {sources[k]} both hold k = {k_text(k)}: give each k once")
+        sources[k] = name
+        frames.append(frame)
     target, fmt = figure_target(args.output)
     for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):
         print(f"figure: {path}")

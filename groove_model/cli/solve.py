@@ -5,14 +5,14 @@ from __future__ import annotations
 import json
 import math
 
-from ..model.parameters import check_domain
 from .common import (
     EXIT_OK,
     UsageError,
     add_command,
     add_compliance_options,
+    add_friction,
     compliance_from,
-    friction,
+    one_friction,
     real,
 )
 
@@ -24,12 +24,16 @@ _EXAMPLES = """examples:
   groove solve --gamma 0.6 --delta 0.2 -k 1 --radius 0.01 --young 2e11 --poisson 0.3 --mass 0.033
   groove solve --gamma 0.6 --delta 0.2 -k 1 --compliance 0.8
 
+angles are printed in full (17 significant digits at most), so a printed gamma or delta can be
+given back to --gamma and --delta unchanged; --json writes every field, with k.
 --poisson NU sets Mindlin's compliance 2 (1 - NU)/(2 - NU) and, with --radius, --young and
 --mass, the Hertz contact of the SI results; --compliance RATIO overrides the compliance.
 """
 
-_KEYS = ("regime", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
-         "T_over_N_L", "T_over_N_R", "d_L", "rotation")
+#: The fields of ``--json``, in order (angles in radians, displacements per approach Z).
+JSON_KEYS = ("k", "compliance", "regime", "rotation", "gamma", "delta", "theta_L", "theta_R",
+             "beta_L", "beta_R", "upsilon", "T_over_N_L", "T_over_N_R", "N_L_over_N_R", "d_L",
+             "d_R")
 
 
 def add_parser(subparsers):
@@ -42,11 +46,11 @@ def add_parser(subparsers):
         examples=_EXAMPLES)
     p.add_argument("--gamma", required=True,
                    type=real("gamma", "0 <= gamma <= pi/2 (90 with --deg)"),
-                   help="half-sum of the wall angles, 0 <= gamma <= pi/2")
+                   help="half-sum of the wall angles, 0 <= gamma <= pi/2 (90 with --deg)")
     p.add_argument("--delta", required=True,
                    type=real("delta", "0 <= delta <= gamma"),
                    help="half-difference of the wall angles, 0 <= delta <= gamma")
-    p.add_argument("-k", required=True, type=friction, help="friction coefficient, > 0")
+    add_friction(p, help="friction coefficient (> 0)")
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")
@@ -60,35 +64,64 @@ def add_parser(subparsers):
     return p
 
 
-def _json_number(value):
-    return value if math.isfinite(value) else None
+def _angles(args) -> tuple[float, float]:
+    """``(gamma, delta)`` in radians, checked in the unit they were given in.
 
+    Raises
+    ------
+    UsageError
+        Naming the angle, its value in the unit given and the allowed range in that unit.
+    """
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_domain
 
-def run(args) -> int:
-    """Solve and print; exit code 0, or :class:`UsageError` for a point outside the domain."""
-    # Imported here, not at the top: the solver loads scipy.optimize, which `groove --help`
-    # and the other commands' start-up should not wait for.
-    from ..model.equilibrium import solve_equilibrium
-    from ..model.parameters import Parameters
-
-    gamma, delta = (math.radians(args.gamma), math.radians(args.delta)) if args.deg else (
-        args.gamma, args.delta)
+    gamma, delta = args.gamma, args.delta
+    if args.deg:
+        if not 0.0 <= gamma <= 90.0:
+            raise UsageError(f"gamma = {gamma!r} deg is outside the allowed range "
+                             "0 <= gamma <= 90 deg")
+        if not 0.0 <= delta <= gamma:
+            raise UsageError(f"delta = {delta!r} deg is outside the allowed range "
+                             f"0 <= delta <= gamma (gamma = {gamma!r} deg)")
+        # radians() is monotonic and maps 90 to the float nearest pi/2, so the check holds.
+        gamma, delta = math.radians(gamma), math.radians(delta)
     try:
         check_domain(gamma, delta)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    return gamma, delta
+
+
+def run(args) -> int:
+    """Solve and print; exit code 0, or :class:`UsageError` for a point outside the domain."""
+    # Imported here, not at the top: the solver loads numpy, which `groove --help` should not
+    # wait for.
+    from ..model.equilibrium import solve_equilibrium
+    from ..model.parameters import Parameters
+
+    k = one_friction(args, "solve")
+    gamma, delta = _angles(args)
     compliance = compliance_from(args)
-    eq = solve_equilibrium(gamma, delta, Parameters(args.k, compliance))
+    eq = solve_equilibrium(gamma, delta, Parameters(k, compliance))
     dimensional = _dimensional(args, eq)
     if args.json:
-        out = {key: (_json_number(v) if isinstance(v, float) else v)
-               for key, v in ((key, getattr(eq, key)) for key in _KEYS)}
+        given = {"k": k, "compliance": compliance.ratio}
+        out = {key: _json_value(given[key] if key in given else getattr(eq, key))
+               for key in JSON_KEYS}
         if dimensional is not None:
-            out["dimensional"] = {key: _json_number(v) for key, v in dimensional.to_dict().items()}
+            out["dimensional"] = {key: _json_value(v) for key, v in dimensional.to_dict().items()}
         print(json.dumps(out))
         return EXIT_OK
-    _print_state(args.k, eq, dimensional, compliance.ratio)
+    _print_state(k, eq, dimensional, compliance.ratio)
     return EXIT_OK
+
+
+def _json_value(value):
+    """A float as itself (None if not finite), an enum or string as its text."""
+    if isinstance(value, str):
+        return str(value.value if hasattr(value, "value") else value)
+    value = float(value)
+    return value if math.isfinite(value) else None
 
 
 def _dimensional(args, eq):
@@ -108,14 +141,19 @@ def _dimensional(args, eq):
 
 
 def _print_state(k: float, eq, dimensional, ratio: float = 1.0) -> None:
-    compliance = "" if ratio == 1.0 else f", compliance ratio {ratio:.6g}"
-    print(f"k = {k:g}{compliance}, gamma = {eq.gamma:.10g} rad ({math.degrees(eq.gamma):.6g} "
-          f"deg), delta = {eq.delta:.10g} rad ({math.degrees(eq.delta):.6g} deg)")
+    """The state in words; ``gamma`` and ``delta`` in full, so that they can be given back."""
+    # Imported here for the same reason as the solver in `run`.
+    from ..model.parameters import k_text
+
+    compliance = "" if ratio == 1.0 else f", compliance ratio {ratio!r}"
+    print(f"k = {k_text(k)}{compliance}, gamma = {float(eq.gamma)!r} rad "
+          f"({math.degrees(eq.gamma):.6g} deg), delta = {float(eq.delta)!r} rad "
+          f"({math.degrees(eq.delta):.6g} deg)")
     print(f"  regime     {eq.regime.replace('_', ' ')}, rotation {eq.rotation}")
     print(f"  theta_L    {eq.theta_L:.10g}   theta_R {eq.theta_R:.10g}")
     print(f"  beta_L     {eq.beta_L:.10g}   beta_R  {eq.beta_R:.10g}")
     print(f"  upsilon    {eq.upsilon:.10g}")
-    print(f"  T/N_L      {eq.T_over_N_L:.10g}   T/N_R   {eq.T_over_N_R:.10g}   (k = {k:g})")
+    print(f"  T/N_L      {eq.T_over_N_L:.10g}   T/N_R   {eq.T_over_N_R:.10g}   (k = {k_text(k)})")
     print(f"  d_L/Z      {eq.d_L:.10g}   d_R/Z   {eq.d_R:.10g}")
     if dimensional is not None:
         d = dimensional

@@ -10,9 +10,9 @@ from .common import (
     EXIT_OK,
     add_command,
     add_compliance_options,
+    add_friction,
     compliance_from,
     compliance_label,
-    friction,
     output_directory,
 )
 
@@ -21,15 +21,22 @@ __all__ = ["add_parser", "run"]
 log = logging.getLogger("groove_model")
 
 _EXAMPLES = """examples:
-  groove trace -k 1 -k 10 --out results/          # the paper's Figure 2: CSVs and overlay
+  groove trace -k 1 10 --out results/             # the paper's Figure 2: CSVs and overlay
+  groove trace -k 1 --poisson 0.5 --out out/      # Mindlin's compliance for nu = 0.5
   groove trace -k 0.5 --out out/ --keep-unphysical  # keep unphysical continuations, flagged
   groove trace -k 2 -k 20 --out out/ --deg --figure my_overlay
-  groove trace -k 1 --poisson 0.5 --out out/      # Mindlin's compliance for nu = 0.5
 
-writes, for each k, boundaries_k{k}.csv (one row per point) and special_points_k{k}.csv,
-and the overlay FIGURE.png and FIGURE.svg; nothing is written if any boundary fails. With
-another compliance than the paper's the names end in _nu{NU} (--poisson) or _c{RATIO}.
+writes, for each k, boundaries_k{k}.csv (one row per point) and special_points_k{k}.csv, with
+k written in full (k = 1.0000001 gives boundaries_k1.0000001.csv), and the overlay FIGURE.png
+and FIGURE.svg (default boundaries_k1_k10 for -k 1 10; for many k a short name with their
+count and a hash, e.g. boundaries_200k_0.01-1000_1a2b3c4d). If a boundary of some k fails,
+that k is reported and skipped, the other k are written, no overlay is drawn, and the exit
+code is 1. Every file is written whole or not at all. With another compliance than the
+paper's the names end in _nu{NU} (--poisson) or _c{RATIO}.
 """
+
+#: Longest default overlay name (without suffix) built from the list of k.
+MAX_FIGURE_NAME = 60
 
 
 def add_parser(subparsers):
@@ -42,11 +49,10 @@ def add_parser(subparsers):
                     "names, by pseudo-arclength continuation, and write them as CSV and as an "
                     "overlay figure in the style of the paper's Figure 2.",
         examples=_EXAMPLES)
-    p.add_argument("-k", required=True, action="append", type=friction, dest="ks",
-                   help="friction coefficient (> 0); repeat for several")
+    add_friction(p, help="friction coefficients (> 0): -k 1 10 or -k 1 -k 10")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--figure", default=None,
-                   help="overlay file name without suffix (default boundaries_k{k1}_k{k2}...)")
+                   help="overlay file name without suffix (default from the k, see below)")
     p.add_argument("--keep-unphysical", action="store_true",
                    help="keep the parts of each boundary where its regime is not valid")
     p.add_argument("--deg", action="store_true", help="overlay axes in degrees")
@@ -56,40 +62,61 @@ def add_parser(subparsers):
     return p
 
 
+def overlay_name(ks) -> str:
+    """The default overlay name: ``boundaries_k1_k10``, or for many ``k`` (a name longer than
+    :data:`MAX_FIGURE_NAME`) ``boundaries_{count}k_{min}-{max}_{hash}``, where the hash of the
+    exact values tells different sets of ``k`` apart."""
+    # Imported here, not at the top: `groove --help` needs neither hashlib nor the model.
+    import hashlib
+
+    from ..model.parameters import k_text  # loads numpy
+
+    texts = [k_text(k) for k in ks]
+    name = "boundaries_" + "_".join(f"k{t}" for t in texts)
+    if len(name) <= MAX_FIGURE_NAME:
+        return name
+    digest = hashlib.sha256(" ".join(texts).encode()).hexdigest()[:8]
+    return f"boundaries_{len(texts)}k_{k_text(min(ks))}-{k_text(max(ks))}_{digest}"
+
+
 def run(args) -> int:
-    """Trace every ``k``; write nothing and return 1 if a boundary failed, else write and 0."""
+    """Trace every ``k``; write the CSVs of each ``k`` whose boundaries all succeeded, and the
+    overlay if every ``k`` did; 1 if any boundary failed, else 0."""
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.export import write_boundary_set
+    from ..model.parameters import Parameters, k_text
     from ..plots.overlay import save_overlay
-    from ..model.parameters import Parameters
     from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
-    sets = []
+    sets, failed = [], []
     for k in dict.fromkeys(args.ks):
-        log.info("tracing k = %g", k)
+        log.info("tracing k = %s", k_text(k))
         result = trace_boundaries(Parameters(k, compliance),
                                   keep_unphysical=args.keep_unphysical)
-        sets.append(result)
         if not result.ok:
+            failed.append(k)
             for failure in result.failures:
-                print(f"groove trace: error: k = {k:g}: {failure}", file=sys.stderr)
-    if not all(b.ok for b in sets):
-        print("groove trace: nothing written: a boundary failed (see above)", file=sys.stderr)
-        return EXIT_FAILED
-    for result in sets:
+                print(f"groove trace: error: k = {k_text(k)}: {failure}", file=sys.stderr)
+            print(f"groove trace: k = {k_text(k)}: nothing written for this k", file=sys.stderr)
+            continue
+        sets.append(result)
         paths = write_boundary_set(result, out, suffix)
-        print(f"k = {result.k:g}, c = {compliance.ratio:.6g}: "
+        print(f"k = {k_text(result.k)}, c = {compliance.ratio!r}: "
               f"{', '.join(str(p) for p in paths)}; "
               f"{sum(len(c.x) for c in result.curves.values())} points, "
               f"|rs_limit - dr_limit| <= {result.limit_distance:.1e}")
         for note in result.notes:
             print(f"  note: {note}")
+    if failed:
+        print(f"groove trace: no overlay: the boundaries of k = "
+              f"{', '.join(map(k_text, failed))} failed (see above)", file=sys.stderr)
+        return EXIT_FAILED
     if not args.no_figure:
-        name = args.figure or "boundaries_" + "_".join(f"k{b.k:g}" for b in sets) + suffix
+        name = args.figure or overlay_name([b.k for b in sets]) + suffix
         for path in save_overlay(sets, out / name, degrees=args.deg):
             print(f"figure: {path}")
     return EXIT_OK

@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.boundaries import BOUNDARY_NAMES
+from ..model.parameters import k_text
 from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
 from .atomic import atomic_write, remove_stale_temporaries
 
@@ -21,8 +22,11 @@ __all__ = [
 
 
 def boundary_file_names(k: float, suffix: str = "") -> tuple[str, str]:
-    """``boundaries_k{k:g}{suffix}.csv`` and ``special_points_k{k:g}{suffix}.csv``."""
-    return f"boundaries_k{k:g}{suffix}.csv", f"special_points_k{k:g}{suffix}.csv"
+    """``boundaries_k{k}{suffix}.csv`` and ``special_points_k{k}{suffix}.csv`` with ``k``
+    written in full (:func:`~groove_model.model.parameters.k_text`): ``boundaries_k1.csv``,
+    ``boundaries_k1.0000001.csv``; two different ``k`` never share a file. ``suffix`` names
+    another compliance than the paper's (e.g. ``"_nu0.3"``)."""
+    return f"boundaries_k{k_text(k)}{suffix}.csv", f"special_points_k{k_text(k)}{suffix}.csv"
 
 
 def write_boundary_set(boundary_set: BoundarySet, directory,
@@ -86,9 +90,34 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         frame[column] = values.astype(float)
     if not np.all(frame["k"] > 0):
         raise ValueError(f"{path}: column k must be > 0")
+    ks = list(dict.fromkeys(frame["k"]))
+    if len(ks) > 1:
+        raise ValueError(f"{path}: column k holds {len(ks)} values ("
+                         f"{', '.join(map(k_text, ks[:3]))}{', ...' if len(ks) > 3 else ''}); "
+                         "a boundaries CSV holds one k, as groove trace writes it")
+    _check_domain_rows(path, frame)
     frame["point"] = frame["point"].fillna("")
     physical = frame["physical"].astype(str).str.lower()
     if not physical.isin(["true", "false"]).all():
         raise ValueError(f"{path}: column physical must be True or False")
     frame["physical"] = physical.eq("true")
     return frame
+
+
+def _check_domain_rows(path: Path, frame: pd.DataFrame) -> None:
+    """Raise ``ValueError`` naming the first row outside ``0 <= delta <= gamma <= pi/2``.
+
+    The slack is that of :func:`~groove_model.model.parameters.check_domain` (the tracer keeps
+    its rows inside the domain exactly, and 17 digits read back exactly).
+    """
+    slack = 4.0 * np.finfo(float).eps
+    gamma, delta = frame["gamma"].to_numpy(), frame["delta"].to_numpy()
+    for bad, name, allowed in (
+            ((gamma < 0.0) | (gamma > 0.5 * np.pi * (1.0 + slack)), "gamma",
+             "0 <= gamma <= pi/2"),
+            ((delta < 0.0) | (delta > gamma * (1.0 + slack)), "delta", "0 <= delta <= gamma")):
+        if np.any(bad):
+            row = int(np.flatnonzero(bad)[0])
+            raise ValueError(f"{path}: column {name} = {float(frame[name].iloc[row])!r} in data "
+                             f"row {row + 1} is outside the allowed range {allowed} (gamma = "
+                             f"{float(gamma[row])!r}, delta = {float(delta[row])!r}, radians)")

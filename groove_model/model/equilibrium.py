@@ -17,12 +17,12 @@ Every state is written in one unknown, the load-share root
 with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Double rolling
 reduces to one equation :math:`P(w) = 0` (a quartic, :func:`double_rolling_state`) that is
 strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
-``scipy.optimize.elementwise.find_root``), never by Newton from a guess. Rolling sliding gives
-``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force ratio, ``upsilon``
-and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``, ``w`` and ``1 - w``
-(:func:`_kinematics`), each a sum of terms of one sign or a difference that vanishes only where
-the physical quantity itself does (``upsilon`` on the no-roll lines, ``d_L`` at the regime
-boundary, ``cos beta_R`` at ``beta_R = pi/2``).
+:func:`~groove_model.model.roots.chandrupatla`), never by Newton from a guess. Rolling
+sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force
+ratio, ``upsilon`` and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``,
+``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms of one sign or a difference
+that vanishes only where the physical quantity itself does (``upsilon`` on the no-roll lines,
+``d_L`` at the regime boundary, ``cos beta_R`` at ``beta_R = pi/2``).
 
 No formula subtracts nearly equal angles or cosines, and ratios of small sines are formed
 before they can underflow, so the same expressions hold from the corners of the domain
@@ -35,11 +35,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 from enum import Enum
+from typing import Any
 
 import numpy as np
-from scipy.optimize import elementwise
 
 from .parameters import HALF_PI, Parameters, check_domain
+from .roots import chandrupatla
 
 __all__ = [
     "Equilibrium",
@@ -102,23 +103,23 @@ class Equilibrium:
         the origin, so subnormal or 0 for ``gamma`` below about ``1e-205`` (their exact values).
     """
 
-    regime: object
-    rotation: object
-    gamma: object
-    delta: object
-    theta_L: object
-    theta_R: object
-    beta_L: object
-    beta_R: object
-    upsilon: object
-    d_L: object
-    d_R: object
-    T_over_N_L: object
-    T_over_N_R: object
-    N_L_over_N_R: object
-    n_L: object
-    n_R: object
-    t: object
+    regime: Any
+    rotation: Any
+    gamma: Any
+    delta: Any
+    theta_L: Any
+    theta_R: Any
+    beta_L: Any
+    beta_R: Any
+    upsilon: Any
+    d_L: Any
+    d_R: Any
+    T_over_N_L: Any
+    T_over_N_R: Any
+    N_L_over_N_R: Any
+    n_L: Any
+    n_R: Any
+    t: Any
 
     def to_dict(self) -> dict:
         """The fields as a dict (for JSON); arrays become lists."""
@@ -320,13 +321,10 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     v = 1.0 - w
     if np.any(inner):
         upper = (rho0[inner] > 0.125 + (5.0 / 12.0) * K[inner]).astype(float)
-        res = elementwise.find_root(
-            double_rolling_equation,
-            (np.zeros(upper.shape), np.full(upper.shape, 0.5)),
-            args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
-            tolerances=dict(xatol=_XATOL, xrtol=2.0 * _EPS, fatol=0.0, frtol=0.0),
-        )
-        x = np.where(res.success, res.x, np.nan)
+        x = chandrupatla(double_rolling_equation, np.zeros(upper.shape),
+                         np.full(upper.shape, 0.5),
+                         args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
+                         xatol=_XATOL, xrtol=2.0 * _EPS)
         w[inner] = np.where(upper > 0.0, 1.0 - x, x)
         v[inner] = np.where(upper > 0.0, x, 1.0 - x)
     kin = _kinematics(w, v, sin_g, cos_g)
@@ -411,7 +409,7 @@ def rolling_sliding_state(gamma, delta, params: Parameters) -> dict:
     ), shape)
 
 
-def regime_validity(gamma, delta, k_or_params):
+def regime_validity(gamma, delta, k):
     """Where each regime's own conditions hold, evaluated independently of the other.
 
     Returns
@@ -421,7 +419,7 @@ def regime_validity(gamma, delta, k_or_params):
         rolling sliding. On ``delta = 0`` beyond ``arctan(k/c)`` the rolling-sliding state is
         the double-sliding one (both walls at ``T = kN``).
     """
-    params = Parameters.coerce(k_or_params)
+    params = Parameters.coerce(k)
     gamma, delta = check_domain(gamma, delta)
     dr = double_rolling_state(gamma, delta, params)
     rs = rolling_sliding_state(gamma, delta, params)
@@ -433,7 +431,7 @@ def regime_validity(gamma, delta, k_or_params):
     return dr_valid, rs_valid
 
 
-def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
+def solve_equilibrium(gamma, delta, k) -> Equilibrium:
     """The equilibrium the paper predicts at ``(gamma, delta)`` for friction ``k``.
 
     Double rolling where it is valid (``T/N <= k`` on both walls), double sliding on
@@ -444,8 +442,9 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     ----------
     gamma, delta : float or array_like
         Half-sum and half-difference of the wall angles, radians, ``0 <= delta <= gamma <= pi/2``.
-    k_or_params : float or Parameters
-        Friction coefficient, finite and > 0, or a full parameter object.
+    k : float or Parameters
+        Friction coefficient, finite and > 0, or a full parameter object
+        (``solve_equilibrium(0.6, 0.2, k=1.0)``).
 
     Returns
     -------
@@ -460,7 +459,7 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
         If the bracketed double-rolling solve fails at a point of the open groove (a bug, never
         expected: the bracket is proven valid there).
     """
-    params = Parameters.coerce(k_or_params)
+    params = Parameters.coerce(k)
     scalar = np.ndim(gamma) == 0 and np.ndim(delta) == 0
     gamma, delta = check_domain(gamma, delta)
     gamma, delta = np.atleast_1d(gamma), np.atleast_1d(delta)
@@ -519,5 +518,6 @@ def solve_equilibrium(gamma, delta, k_or_params) -> Equilibrium:
     values = dict(out, regime=regime, rotation=rotation, gamma=gamma, delta=delta,
                   theta_L=theta_L, theta_R=theta_R)
     if scalar:
-        values = {key: (v[0].item() if hasattr(v[0], "item") else v[0]) for key, v in values.items()}
+        values = {key: (v[0].item() if hasattr(v[0], "item") else v[0])
+                  for key, v in values.items()}
     return Equilibrium(**values)

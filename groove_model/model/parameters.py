@@ -21,6 +21,7 @@ __all__ = [
     "check_friction",
     "check_poisson",
     "gamma_delta_from_thetas",
+    "k_text",
     "thetas_from_gamma_delta",
 ]
 
@@ -29,7 +30,8 @@ HALF_PI = 0.5 * math.pi
 
 def _check_real(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
-        raise TypeError(f"{name} must be a real number, got {value!r} of type {type(value).__name__}")
+        raise TypeError(f"{name} must be a real number, got {value!r} of type "
+                        f"{type(value).__name__}")
     return float(value)
 
 
@@ -72,6 +74,16 @@ def check_poisson(nu: object) -> float:
         raise ValueError(f"Poisson ratio nu = {value!r} is outside the allowed range "
                          f"{low:g} < nu <= {high:g} (an isotropic elastic solid)")
     return value
+
+
+def k_text(k: float) -> str:
+    """``k`` as the shortest text that reads back as the same float, without a trailing ``.0``.
+
+    ``1``, ``0.5``, ``1.0000001``, ``1e-05``: two different ``k`` never get the same text, so it
+    is safe in file names and labels (``f"{k:g}"`` makes 1.0000001 and 1.0000002 both ``1``).
+    """
+    text = repr(float(k))
+    return text[:-2] if text.endswith(".0") else text
 
 
 @dataclass(frozen=True)
@@ -166,7 +178,8 @@ class Parameters:
 
     @classmethod
     def coerce(cls, k_or_params) -> Parameters:
-        """``k_or_params`` itself if it is a :class:`Parameters`, else ``Parameters(k_or_params)``."""
+        """``k_or_params`` itself if it is a :class:`Parameters`, else
+        ``Parameters(k_or_params)``."""
         return k_or_params if isinstance(k_or_params, cls) else cls(k_or_params)
 
     @property
@@ -188,7 +201,10 @@ def thetas_from_gamma_delta(gamma, delta):
 
 
 def gamma_delta_from_thetas(theta_L, theta_R):
-    """Half-sum and half-difference ``gamma = (theta_L + theta_R)/2``, ``delta = (theta_L - theta_R)/2``."""
+    """Half-sum and half-difference of the wall angles.
+
+    ``gamma = (theta_L + theta_R)/2``, ``delta = (theta_L - theta_R)/2`` (radians).
+    """
     theta_L = np.asarray(theta_L, dtype=float)
     theta_R = np.asarray(theta_R, dtype=float)
     return 0.5 * (theta_L + theta_R), 0.5 * (theta_L - theta_R)
@@ -211,7 +227,8 @@ def check_domain(gamma, delta):
         gamma_a = np.asarray(gamma, dtype=float)
         delta_a = np.asarray(delta, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise TypeError(f"gamma and delta must be real numbers, got {gamma!r} and {delta!r}") from exc
+        raise TypeError(f"gamma and delta must be real numbers, got {gamma!r} and "
+                        f"{delta!r}") from exc
     gamma_a, delta_a = np.broadcast_arrays(gamma_a, delta_a)
     slack = 4.0 * np.finfo(float).eps
     checks = (

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import matplotlib
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -26,7 +27,8 @@ from ..io.export import atomic_write
 from ..model.lines import dr_limit_no_roll_point
 from ..model.parameters import Parameters
 from ..tracing import trace_boundaries
-from .overlay import STYLE_LABELS, draw_boundaries
+from .labels import label_regions, region_label_positions
+from .overlay import DIAGONAL_LABEL, MARKER_LABELS, STYLE_LABELS, draw_boundaries
 
 __all__ = [
     "CATEGORY_COLOURS",
@@ -100,6 +102,18 @@ def _label_offsets(params: Parameters) -> dict:
     }
 
 
+def _seed_label_area(params: Parameters) -> list:
+    """Points (radians) covered by the seed points and their labels, which the regions' names
+    keep clear of (offsets converted at about 0.0037 rad per point, the default figure's)."""
+    offsets = _label_offsets(params)
+    area = []
+    for label, (g, d) in _seed_points(params).items():
+        dx, dy = offsets[label]
+        steps = np.linspace(0.0, 1.0, 6)
+        area += [(g + t * 0.0037 * dx, d + t * 0.0037 * (dy + 6)) for t in steps]
+    return area
+
+
 def _rgba(codes: np.ndarray) -> np.ndarray:
     table = np.array([to_rgba(CATEGORY_COLOURS[name]) for name in CATEGORIES] + [(0, 0, 0, 0)])
     return table[np.where(codes == OUTSIDE, len(CATEGORIES), codes)]
@@ -113,8 +127,8 @@ def _drawn_entries(boundary_set) -> set:
         if name not in STYLE_LABELS or not physical.any():
             continue
         entries.add(STYLE_LABELS[name])
-        entries.update(p.kind.replace("_", " ") for p in curve.special_points
-                       if physical[p.index])
+        entries.update(MARKER_LABELS[p.kind] for p in curve.special_points
+                       if physical[p.index] and p.kind in MARKER_LABELS)
     return entries
 
 
@@ -143,8 +157,9 @@ def draw_regime_map(ax, k, n: int = 600, boundaries: bool = True, degrees: bool 
     dict
         The artists: ``"image"`` (the shaded regions, an ``AxesImage`` clipped to the triangle),
         ``"segments"`` (the two segments of ``delta = 0``), ``"boundaries"`` (from
-        :func:`groove_model.plots.overlay.draw_boundaries`), ``"seeds"`` (markers and labels of the
-        seed points), ``"legend"``, and ``"boundary_set"``, the traced boundaries (or None).
+        :func:`groove_model.plots.overlay.draw_boundaries`), ``"regions"`` (the names written
+        in the regions), ``"seeds"`` (markers and labels of the seed points), ``"legend"``, and
+        ``"boundary_set"``, the traced boundaries (or None).
 
     Raises
     ------
@@ -163,7 +178,7 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
     codes = classify_cells(params, n)
     artists = {"image": _shade(ax, codes, top), "segments": _draw_axis(ax, params, scale),
                "boundaries": [], "seeds": [], "legend": None, "boundary_set": None}
-    boundary_handles = []
+    boundary_handles: list = []
     if boundaries:
         boundary_set = boundary_set if boundary_set is not None else trace_boundaries(params)
         if not boundary_set.ok:
@@ -171,6 +186,9 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
                         "; ".join(boundary_set.failures))
         artists["boundary_set"] = boundary_set
         artists["boundaries"], boundary_handles = _overlay_boundaries(ax, boundary_set, degrees)
+    artists["regions"] = label_regions(
+        ax, region_label_positions([params], codes_list=[codes], avoid=_seed_label_area(params)),
+        scale, color="0.1")
     artists["seeds"] = _label_seed_points(ax, params, scale)
     _frame_axes(ax, top, "deg" if degrees else "rad")
     if legend:
@@ -193,7 +211,7 @@ def _draw_axis(ax, params: Parameters, scale: float) -> list:
     top = _HALF_PI * scale
     lines = ax.plot([0.0, top, top, 0.0], [0.0, 0.0, top, 0.0], color="0.35", lw=0.8, zorder=1)
     g_lim = params.gamma_limit * scale
-    for name, (a, b) in zip(_AXIS_SEGMENTS, ((0.0, g_lim), (g_lim, top))):
+    for name, (a, b) in zip(_AXIS_SEGMENTS, ((0.0, g_lim), (g_lim, top)), strict=True):
         lines += ax.plot([a, b], [0.0, 0.0], color=CATEGORY_COLOURS[name], lw=4.5,
                          solid_capstyle="butt", zorder=2)
     return lines
@@ -208,7 +226,8 @@ def _overlay_boundaries(ax, boundary_set, degrees: bool) -> tuple[list, list]:
     if drawn is None:
         return artists, []
     present = _drawn_entries(boundary_set)
-    handles = [(h, t.get_text()) for h, t in zip(drawn.legend_handles, drawn.get_texts())
+    handles = [(h, t.get_text())
+               for h, t in zip(drawn.legend_handles, drawn.get_texts(), strict=True)
                if t.get_text() in present]
     drawn.remove()
     return artists, handles
@@ -242,7 +261,8 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list):
     """Each region present in words, the two axis segments, then the boundaries' entries."""
     present = set(np.unique(codes[codes != OUTSIDE]).tolist())
     present |= {CATEGORY_CODE[name] for name in _AXIS_SEGMENTS}
-    handles, labels = [], []
+    handles: list[Artist] = []
+    labels: list[str] = []
     for code, name in enumerate(CATEGORIES):
         if code not in present:
             continue
@@ -252,7 +272,7 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list):
             handles.append(Patch(facecolor=CATEGORY_COLOURS[name], edgecolor="0.5", lw=0.5))
         labels.append(CATEGORY_LABELS[name])
     for handle, text in boundary_handles:
-        if text == r"$\delta = \gamma$":
+        if text == DIAGONAL_LABEL:
             continue
         handles.append(handle)
         labels.append(text)

@@ -13,13 +13,14 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
 from continuation import Curve, Event, Options, Problem, SpecialKind, trace
 
 from ..model.boundaries import BoundarySystem, Condition, corner_point
-from .curves import BoundaryCurve, BoundarySpecialPoint, PointKind, Where, POINT_ORDER
+from .curves import POINT_ORDER, BoundaryCurve, BoundarySpecialPoint, PointKind, Where
 
 __all__ = ["DOMAIN_TOLERANCE", "Role", "Tagged", "assemble", "domain_events", "trace_curve",
            "validity_events"]
@@ -119,12 +120,12 @@ def _end_role(curve: Curve, tagged: list[Tagged], x_end) -> Role | None:
     if _at_corner(x_end):
         return Role.CORNER
     ends = [p for p in curve.special_points if p.kind is SpecialKind.EVENT
-            and p.index == len(curve) - 1 and tagged[p.event].event.terminal]
-    return tagged[ends[-1].event].role if ends else None
+            and p.index == len(curve) - 1 and tagged[cast(int, p.event)].event.terminal]
+    return tagged[cast(int, ends[-1].event)].role if ends else None
 
 
-_END_OF_ROLE = {Role.CORNER: Where.CORNER, Role.GAMMA_MIN: Where.GAMMA_MIN,
-                Role.DOMAIN_EDGE: Where.DOMAIN_EDGE}
+_END_OF_ROLE: dict[Role | None, Where] = {
+    Role.CORNER: Where.CORNER, Role.GAMMA_MIN: Where.GAMMA_MIN, Role.DOMAIN_EDGE: Where.DOMAIN_EDGE}
 
 
 def _end_note(curve: Curve, tagged: list[Tagged], x_end) -> str:
@@ -167,17 +168,17 @@ def _engine_marks(curve: Curve, physical: np.ndarray, tagged: list[Tagged],
                 continue
             coordinate = "gamma" if p.coordinate == 0 else "delta"
             marks.add(p.index, _FOLD_KINDS[p.coordinate], f"turning point in {coordinate}")
-        elif p.kind is SpecialKind.EVENT and tagged[p.event].role is Role.VALIDITY:
+        elif p.kind is SpecialKind.EVENT and tagged[cast(int, p.event)].role is Role.VALIDITY:
             # A cut point: the physical part ends (or begins) here only if the physical flag
             # changes across it; a validity function that crosses zero while another one is
             # still violated (or touches zero) cuts nothing.
             i = p.index
             before = physical[i - 1] if i > 0 else False
             after = physical[i + 1] if i + 1 <= last else False
-            condition = tagged[p.event].condition
+            condition = tagged[cast(int, p.event)].condition
             if before and not after:
                 marks.add(i, PointKind.END, f"regime limit: {condition} fails beyond")
-                marks.limits[i] = condition
+                marks.limits[i] = cast(Condition, condition)
                 if condition is Condition.T_OVER_N_L:
                     marks.add(i, PointKind.JUNCTION, "meets dr_limit (T = k N_L)")
             elif after and not before:

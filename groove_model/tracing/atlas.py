@@ -45,7 +45,6 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
-
 from typing import TYPE_CHECKING
 
 import numpy as np

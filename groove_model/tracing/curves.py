@@ -1,9 +1,9 @@
 """What the tracer returns: boundaries, their special points, and the CSV tables they make.
 
 A :class:`BoundarySet` holds every boundary of one ``k`` as a :class:`BoundaryCurve` in
-``x = (gamma, delta, beta_L, upsilon)``, with its special points (:class:`BoundarySpecialPoint`, kinds in
-:class:`PointKind`) and where its physical part starts and ends (:class:`Where`); ``to_frame``
-gives the rows of the CSV files (:data:`CSV_COLUMNS`).
+``x = (gamma, delta, beta_L, upsilon)``, with its special points
+(:class:`BoundarySpecialPoint`, kinds in :class:`PointKind`) and where its physical part starts
+and ends (:class:`Where`); ``to_frame`` gives the rows of the CSV files (:data:`CSV_COLUMNS`).
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ import dataclasses
 import enum
 import math
 from dataclasses import dataclass, field
-
 from typing import TYPE_CHECKING
 
 import numpy as np

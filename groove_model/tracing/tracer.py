@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import logging
 import math
+from typing import cast
 
 import numpy as np
 from scipy.linalg.lapack import dgesv
@@ -179,7 +180,7 @@ def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
     :data:`JUNCTION_TOLERANCE`. Returns the marks for :func:`assemble` and a problem, if any.
     """
     crossings = [p for p in limit.special_points if p.kind is SpecialKind.EVENT
-                 and tagged[p.event].role is Role.NO_ROLL and p.index > 0]
+                 and tagged[cast(int, p.event)].role is Role.NO_ROLL and p.index > 0]
     if not crossings or junction is None:
         return (), ""
     index = crossings[0].index

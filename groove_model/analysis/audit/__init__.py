@@ -24,7 +24,13 @@ Verdicts
     part of a compound statement holds; the qualification is stated with numbers.
 ``fails``
     False as written: the counterexample is a point where the statement is violated by far
-    more than the numerical tolerance.
+    more than the numerical tolerance. There is no ``fails`` without a counterexample.
+``inconclusive``
+    The check's criterion was not met at its resolution (e.g. a region thinner than the grid
+    step just above ``k = sqrt 2``), but no point where the statement is false was found.
+``not applicable``
+    The statement is about friction coefficients none of which was audited (e.g. ``k > sqrt
+    2`` when only ``k = 1`` is); the summary says which, and nothing was checked.
 
 All angles are in radians; forces are the paper's ratios (``T/N``) and displacements are per
 unit approach ``Z``. The compliance is the paper's, ``u_t/u_n = T/N``, except in the check of
@@ -48,7 +54,9 @@ Modules
     Markdown), :data:`~.report.DEFAULT_KS`.
 ``run``
     :func:`~.run.run_audit`.
+``defaults``
+    :data:`~.defaults.DEFAULT_KS`, in a module that imports nothing.
 
 This package's ``__init__`` imports nothing, so that ``groove --help`` can read
-:data:`~.report.DEFAULT_KS` without loading scipy and the solver.
+:data:`~.defaults.DEFAULT_KS` without loading numpy, scipy and the solver.
 """

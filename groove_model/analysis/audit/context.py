@@ -12,7 +12,7 @@ import numpy as np
 
 from ...model.equilibrium import double_rolling_state, rolling_sliding_state
 from ...model.lines import dr_limit_delta, dr_limit_no_roll_point, dr_no_roll_line, rs_no_roll_gamma
-from ...model.parameters import Parameters
+from ...model.parameters import Parameters, k_text
 from ..regimes import CATEGORIES, classify_grid
 
 __all__ = [
@@ -134,7 +134,7 @@ class Context:
     def traced(self, k):
         """The tracer's boundaries with their unphysical parts, or None (reason recorded)."""
         def compute():
-            label = f"k = {k:g}"
+            label = k_label(k)
             if not self.use_tracer:
                 self.tracer_status[label] = "not used (use_tracer=False)"
                 return None
@@ -171,8 +171,8 @@ def distance(a, b) -> float:
 
 
 def k_label(k: float) -> str:
-    """The key of one ``k`` in the numbers of a claim."""
-    return f"k = {k:g}"
+    """The key of one ``k`` in the numbers of a claim (``k`` in full, so keys never collide)."""
+    return f"k = {k_text(k)}"
 
 
 def rotation_changes(rg, regime: str):

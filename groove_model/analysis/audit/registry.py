@@ -20,11 +20,16 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from importlib import resources
 
+from ...model.parameters import k_text
 from .context import GRID_N, LINE_N, MAP_N
 from .report import Claim, Counterexample, Verdict
 
-__all__ = ["CHECKS", "CLAIM_TEXTS", "ClaimText", "Finding", "claim", "verdict"]
+__all__ = ["CHECKS", "CLAIM_TEXTS", "ClaimText", "Finding", "applicable", "claim",
+           "not_applicable", "verdict"]
 
+_INCONCLUSIVE = ("Inconclusive: not confirmed at the check's resolution for every k audited, "
+                 "yet no point where it is false was found; the numbers show what was not "
+                 "resolved.")
 #: Resolutions the methods in ``claims.ini`` name: ``{grid_points}`` etc.
 _RESOLUTIONS = dict(grid_points=GRID_N - 1, map_steps=MAP_N, line_points=LINE_N - 1)
 
@@ -52,6 +57,28 @@ def verdict(holds: bool, qualified: bool = False) -> Verdict:
     return Verdict.QUALIFIED if qualified else Verdict.HOLDS
 
 
+def applicable(ks, about: Callable[[float], bool], scope: str) -> tuple[list, dict]:
+    """The ``k`` a claim about ``scope`` (e.g. ``"k > sqrt 2"``) applies to, of those audited.
+
+    Returns the list of those ``k`` and the numbers to report for the others (empty if none).
+    """
+    ks = list(ks)
+    inside = [k for k in ks if about(k)]
+    outside = [k_text(k) for k in ks if not about(k)]
+    numbers = {f"not applicable (the statement is about {scope})":
+               "k = " + ", ".join(outside)} if outside else {}
+    return inside, numbers
+
+
+def not_applicable(ks, scope: str) -> Finding:
+    """The finding on a claim about ``scope`` when no ``k`` audited is in it."""
+    listed = ", ".join(k_text(k) for k in ks)
+    return Finding(Verdict.NOT_APPLICABLE,
+                   numbers={"the statement is about": scope, "k audited": listed},
+                   summary=f"Not applicable: about {scope}; no k audited is (k = {listed}). "
+                           "Audit such a k to check it.")
+
+
 @dataclass(frozen=True)
 class ClaimText:
     """The fixed text of one claim.
@@ -71,11 +98,19 @@ class ClaimText:
     def state(self, finding: Finding) -> Claim:
         """The claim with what its check found.
 
+        A ``fails`` without a counterexample becomes ``inconclusive``.
+
         Raises
         ------
         ValueError
             If neither the check nor ``claims.ini`` gives a summary.
         """
+        if finding.verdict is Verdict.FAILS and finding.counterexample is None:
+            # "fails" is a finding only with the point where the statement is false; without
+            # one the check's criterion was not met at its resolution (e.g. a region thinner
+            # than the grid step near k = sqrt 2).
+            finding = Finding(Verdict.INCONCLUSIVE, numbers=finding.numbers,
+                              summary=_INCONCLUSIVE, method_values=finding.method_values)
         summary = finding.summary or self.summaries.get(Verdict(finding.verdict).value,
                                                         self.summaries.get("any"))
         if summary is None:

@@ -13,11 +13,20 @@ import numpy as np
 
 from ...model.equilibrium import double_rolling_state, solve_equilibrium
 from ...model.lines import bracketed_root, dr_limit_delta, dr_margins
-from ...model.parameters import Parameters
+from ...model.parameters import Parameters, k_text
 from ..regimes import CATEGORIES
-from .context import (HALF_PI, IDENTITY_TOL, SQRT2, Context, distance, first_special_point, k_label,
-                      rotation_changes, sign_changes)
-from .registry import Finding, claim, verdict
+from .context import (
+    HALF_PI,
+    IDENTITY_TOL,
+    SQRT2,
+    Context,
+    distance,
+    first_special_point,
+    k_label,
+    rotation_changes,
+    sign_changes,
+)
+from .registry import Finding, applicable, claim, not_applicable, verdict
 from .report import Counterexample
 
 # The checks are registered with @claim and run by run.run_audit, not imported by name.
@@ -58,7 +67,7 @@ def check_dr_contacts(ctx: Context) -> Finding:
                 "the axis delta = 0 (upsilon = 0 exactly, both contacts stuck, as the paper "
                 "itself says two sentences later) and, for k > sqrt 2, the upsilon = 0 line "
                 "inside double rolling (present here for k = "
-                f"{', '.join(f'{k:g}' for k in exceptions) or 'none'}).",
+                f"{', '.join(map(k_text, exceptions)) or 'none'}).",
         numbers=per_k,
         counterexample=ce)
 
@@ -170,7 +179,8 @@ def check_delta0_ratio(ctx: Context) -> Finding:
     per_k = {}
     for k in ctx.ks:
         below = tn_L < k
-        per_k[k_label(k)] = {"largest gamma with T/N < k": float(g[below].max()),
+        per_k[k_label(k)] = {"largest gamma with T/N < k":
+                                 float(g[below].max()) if below.any() else math.nan,
                              "arctan k": math.atan(k),
                              "gammas with T/N >= k": int(np.count_nonzero(~below))}
     some_exceed = any(r["gammas with T/N >= k"] > 0 for r in per_k.values())
@@ -202,11 +212,12 @@ def check_delta0_validity(ctx: Context) -> Finding:
         dr = eq.regime == "double_rolling"
         last = float(g[dr].max()) if np.any(dr) else math.nan
         first_out = float(g[~dr].min()) if np.any(~dr) else math.nan
-        # The step where validity is lost brackets arctan k.
-        brackets = last <= math.atan(k) <= first_out
+        # The step where validity is lost brackets arctan k (beyond the last gamma of the
+        # grid when arctan k is that close to pi/2).
+        brackets = not (last > math.atan(k) or first_out < math.atan(k))
         # Exactly at arctan k the ratio equals k up to round-off: either answer is right.
         decided = np.abs(g - math.atan(k)) > 1e-12
-        ok &= brackets and bool(np.all(dr[decided] == (g <= math.atan(k))[decided]))
+        ok &= brackets and bool(np.all((dr == (g <= math.atan(k)))[decided]))
         per_k[k_label(k)] = {"last double-rolling gamma": last, "arctan k": math.atan(k),
                              "first gamma with T/N > k": first_out}
     return Finding(verdict(ok), numbers=per_k)
@@ -376,11 +387,13 @@ def check_dr_no_roll_k(ctx: Context) -> Finding:
 
 @claim("dr_no_roll_sides")
 def check_dr_no_roll_sides(ctx: Context) -> Finding:
-    per_k, ok, checked = {}, True, 0
+    # The line is a boundary inside double rolling only where it is physical: for k > sqrt 2.
+    ks, skipped = applicable(ctx.ks, lambda k: k > SQRT2, "k > sqrt 2")
+    if not ks:
+        return not_applicable(ctx.ks, "k > sqrt 2")
+    per_k, ok = {}, True
     g_line, d_line, _ = ctx.dr_no_roll()
-    for k in ctx.ks:
-        if k <= SQRT2:
-            continue
+    for k in ks:
         rg = ctx.regime_grid(k)
         changes, bad = rotation_changes(rg, "double_rolling")
         # Where the change happens on each row against the line.
@@ -401,9 +414,8 @@ def check_dr_no_roll_sides(ctx: Context) -> Finding:
                              "rows cw -> ccw only": int(np.count_nonzero(changes == 1)) - bad,
                              "rows violating": bad,
                              "max |change - line| / step": worst / rg.step}
-        checked += 1
         ok &= bad == 0 and worst <= rg.step
-    return Finding(verdict(ok and checked > 0), numbers=per_k)
+    return Finding(verdict(ok), numbers={**skipped, **per_k})
 
 
 @claim("amontons_one_sided")

@@ -1,0 +1,104 @@
+"""What every ``groove`` command shares: ``-k``, ``-v``, ``--version``, ``python -m``."""
+
+import importlib.metadata
+import logging
+import subprocess
+import sys
+
+import pytest
+
+import groove_model
+from groove_model.cli.main import build_parser, main
+
+
+@pytest.mark.parametrize("command, rest", [
+    ("solve", ["--gamma", "0.6", "--delta", "0.2"]),
+    ("trace", ["--out", "out"]),
+    ("map", ["-o", "map.png"]),
+    ("audit", []),
+])
+def test_every_command_reads_k_both_ways(command, rest):
+    parser = build_parser()
+    spaced = parser.parse_args([command, "-k", "1", "10", *rest])
+    repeated = parser.parse_args([command, "-k", "1", "-k", "10", *rest])
+    assert spaced.ks == repeated.ks == [1.0, 10.0]
+
+
+@pytest.mark.parametrize("command, rest", [
+    ("map", ["-o", "map.png"]),
+    ("solve", ["--gamma", "0.6", "--delta", "0.2"]),
+])
+def test_one_k_commands_refuse_several(command, rest, tmp_path, capsys):
+    rest = [str(tmp_path / r) if r.endswith(".png") else r for r in rest]
+    with pytest.raises(SystemExit) as info:
+        main([command, "-k", "1", "-k", "10", *rest])
+    assert info.value.code == 2
+    assert "takes one friction coefficient, got k = 1, 10" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_one_k_commands_accept_a_repeated_value(capsys):
+    assert main(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1", "-k", "1"]) == 0
+    assert capsys.readouterr().out.startswith("k = 1, ")
+
+
+@pytest.mark.parametrize("argv", [
+    ["-v", "solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"],
+    ["solve", "-v", "--gamma", "0.6", "--delta", "0.2", "-k", "1"],
+    ["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1", "--verbose"],
+])
+def test_verbose_before_or_after_the_command(argv):
+    assert build_parser().parse_args(argv).verbose is True
+
+
+def test_verbose_is_off_by_default():
+    args = build_parser().parse_args(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"])
+    assert getattr(args, "verbose", False) is False
+
+
+def test_verbose_after_the_command_logs(monkeypatch):
+    seen = {}
+    monkeypatch.setattr(logging, "basicConfig", lambda **kw: seen.update(kw))
+    assert main(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1", "-v"]) == 0
+    assert seen["level"] == logging.INFO
+
+
+def test_version(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--version"])
+    assert info.value.code == 0
+    assert capsys.readouterr().out.strip() == f"groove {groove_model.__version__} " \
+                                              "(groove-continuation)"
+    assert groove_model.__version__ == importlib.metadata.version("groove-continuation")
+
+
+def test_python_dash_m():
+    done = subprocess.run([sys.executable, "-m", "groove_model", "solve", "--gamma", "0.6",
+                           "--delta", "0.2", "-k", "1", "--json"],
+                          capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert '"regime": "rolling_sliding"' in done.stdout
+
+
+def test_help_and_solve_import_neither_scipy_nor_matplotlib():
+    code = ("import sys\n"
+            "from groove_model.cli import main\n"
+            "try:\n"
+            "    main(['--help'])\n"
+            "except SystemExit:\n"
+            "    pass\n"
+            "help_loaded = {m for m in ('numpy', 'scipy', 'pandas', 'matplotlib')"
+            " if m in sys.modules}\n"
+            "main(['solve', '--gamma', '0.6', '--delta', '0.2', '-k', '1'])\n"
+            "solve_loaded = {m for m in ('scipy', 'pandas', 'matplotlib') if m in sys.modules}\n"
+            "print(sorted(help_loaded), sorted(solve_loaded))\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    assert done.stdout.strip().splitlines()[-1] == "[] []"
+
+
+def test_py_typed_marker_is_shipped():
+    from importlib import resources
+
+    assert resources.files("groove_model").joinpath("py.typed").is_file()
+    assert resources.files("continuation").joinpath("py.typed").is_file()
