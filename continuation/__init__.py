@@ -2,8 +2,9 @@
 
 The engine follows a solution curve through folds in any coordinate, locates
 events, folds and simple branch points exactly, switches branches and closes
-loops, and follows folds and event points in a second parameter (:mod:`.codim2`) (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
-Methods*, SIAM 2003; H. B. Keller, 1977). It imports numpy and scipy only.
+loops, and follows folds and event points in a second parameter (:mod:`.codim2`)
+(E. L. Allgower and K. Georg, *Introduction to Numerical Continuation Methods*, SIAM 2003;
+H. B. Keller, 1977). It imports numpy and scipy only.
 
 Example
 -------

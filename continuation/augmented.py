@@ -1,4 +1,4 @@
-r"""The augmented systems of two-parameter continuation: a fold and an event point in ``z = (x, p)``.
+r"""The augmented systems of two-parameter continuation: a fold and an event point in z = (x, p).
 
 Both add one scalar equation to ``H(x, p) = 0``, so that the special point of the curve
 ``H(., p) = 0`` becomes a regular point of a curve in ``z`` (``n + 1`` equations in ``n + 2``

@@ -408,7 +408,7 @@ def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Cur
     """One :class:`Codim2Curve` from the pieces (each starts at the last one's end)."""
     z, s, tangents, residuals, points = [], [], [], [], []
     offset_s, offset_i = 0.0, 0
-    for k, (curve, system) in enumerate(zip(pieces, systems)):
+    for k, (curve, system) in enumerate(zip(pieces, systems, strict=True)):
         skip = 1 if k else 0
         z.append(curve.x[skip:])
         s.append(curve.s[skip:] + offset_s)

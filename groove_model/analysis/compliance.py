@@ -1,4 +1,4 @@
-r"""How the regime diagram depends on the contact's compliance: the atlas for several Poisson ratios.
+r"""How the regime diagram depends on the compliance: the atlas for several Poisson ratios.
 
 The paper takes ``u_t/u_n = T/N`` (Eq. prop), Mindlin's law in the limit of a small Poisson
 ratio, and says that "the qualitative properties of the solution are relatively independent of
@@ -165,7 +165,7 @@ def _shifts(reference: Atlas, other: Atlas, samples: int) -> dict:
             if len(a) != len(b):
                 one_side += 1
                 continue
-            for x, y in zip(a, b):
+            for x, y in zip(a, b, strict=True):
                 compared += 1
                 distance = math.hypot(x[0] - y[0], x[1] - y[1])
                 if distance > worst:

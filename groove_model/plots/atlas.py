@@ -2,8 +2,9 @@
 
 :func:`save_atlas_figure` draws one atlas in four panels (``gamma``, ``delta``, ``beta_L`` on a
 log axis, ``upsilon``), one colour per curve of special points (dots: the computed points;
-lines: the engine's cubic Hermite arcs between them), and a vertical line at each threshold. :func:`save_compliance_figure` overlays the atlases in ``k`` of several Poisson ratios
-and shows the atlases in ``nu`` at fixed ``k``.
+lines: the engine's cubic Hermite arcs between them), and a vertical line at each threshold.
+:func:`save_compliance_figure` overlays the atlases in ``k`` of several Poisson ratios and shows
+the atlases in ``nu`` at fixed ``k``.
 """
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
     handles = []
     for i, (name, curve) in enumerate(atlas.curves.items()):
         values, x = curve.dense(6)
-        for ax, (_, _, column) in zip(axes, _PANELS):
+        for ax, (_, _, column) in zip(axes, _PANELS, strict=True):
             y, computed = x[:, column], curve.x[:, column]
             if column == 2:  # log axis: beta_L = 0 only at the corner, never on these curves
                 y, computed = np.where(y > 0, y, np.nan), np.where(computed > 0, computed, np.nan)
@@ -74,7 +75,7 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
             axes[0].annotate(f"{t.name} = {t.value:.6g}", (t.value, 1.0 - 0.3 * (j % 2)),
                              xycoords=("data", "axes fraction"), rotation=90, fontsize=7,
                              va="top", ha="right", color="0.3")
-    for ax, (_, ylabel, column) in zip(axes, _PANELS):
+    for ax, (_, ylabel, column) in zip(axes, _PANELS, strict=True):
         ax.set_ylabel(ylabel)
         if atlas.axis.name == "k":
             ax.set_xscale("log")
@@ -125,21 +126,25 @@ def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
                            ) -> list[Path]:
     """The atlases in ``k`` for several ``nu`` (``{nu: Atlas}``, one line style each) over the
     atlases in ``nu`` at fixed ``k`` (``{k: Atlas}``), ``gamma`` and ``delta`` only."""
-    fig = Figure(figsize=(11.0, 8.0))
+    # the atlases in nu get one panel each in the second row (every k given is drawn)
+    columns = max(2, len(in_nu))
+    fig = Figure(figsize=(5.5 * columns, 8.0))
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.07, top=0.92, wspace=0.2, hspace=0.25)
-    grid = fig.subplots(2, 2)
+    grid = fig.subplots(2, columns, squeeze=False)
+    for ax in (*grid[0][2:], *grid[1][len(in_nu):]):
+        ax.set_visible(False)
     styles = []
     for j, (nu, atlas) in enumerate(in_k.items()):
         style = _LINESTYLES[j % len(_LINESTYLES)]
         styles.append(Line2D([], [], color="0.2", ls=style, label=f"\u03bd = {nu:g}"))
-        for ax, column in zip(grid[0], (0, 1)):
+        for ax, column in zip(grid[0][:2], (0, 1), strict=True):
             for i, (name, curve) in enumerate(atlas.curves.items()):
                 values, x = curve.dense(6)
                 ax.plot(values, x[:, column], ls=style, color=_colour(name, i), lw=1.2,
                         label=_LABELS.get(name, name) if j == 0 else None)
             for t in atlas.thresholds:
                 ax.axvline(t.value, color="0.5", lw=0.7, ls=style, zorder=0)
-    for ax, column in zip(grid[0], (0, 1)):
+    for ax, column in zip(grid[0][:2], (0, 1), strict=True):
         ax.set_xscale("log")
         ax.xaxis.set_major_formatter(FuncFormatter(_powers_of_ten))
         ax.set_xlim(1e-2, 1e4)
@@ -148,7 +153,7 @@ def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
         ax.grid(True, lw=0.3, alpha=0.5)
     grid[0][0].legend(fontsize=7, loc="upper left")
     grid[0][1].legend(handles=styles, fontsize=7, loc="upper left")
-    for ax, (k, atlas) in zip(grid[1], in_nu.items()):
+    for ax, (k, atlas) in zip(grid[1][:len(in_nu)], in_nu.items(), strict=True):
         for i, (name, curve) in enumerate(atlas.curves.items()):
             values, x = curve.dense(6)
             ax.plot(values, x[:, 0], color=_colour(name, i), lw=1.4)

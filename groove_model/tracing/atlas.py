@@ -56,9 +56,9 @@ from ..model.parameters import Compliance, check_friction
 from .curves import PointKind
 from .families import Axis, BoundaryFamily, domain_events, junction_event, special_points
 
-__all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "THRESHOLD_COLUMNS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
-           "POISSON_OPTIONS",
-           "Atlas", "AtlasCurve", "Threshold", "trace_atlas", "trace_atlas_in_poisson"]
+__all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
+           "POISSON_OPTIONS", "THRESHOLD_COLUMNS", "Atlas", "AtlasCurve", "Threshold",
+           "trace_atlas", "trace_atlas_in_poisson"]
 
 DEFAULT_K_RANGE = (1e-4, 1e6)
 DEFAULT_POISSON_RANGE = (0.0, 0.5)

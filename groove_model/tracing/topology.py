@@ -232,7 +232,7 @@ def topology_table(atlas: Atlas) -> tuple[TopologyRange, ...]:
     bounds = [(0.0, ""), *cuts, (math.inf, "")]
     k_min, k_max = atlas.range
     ranges = []
-    for (low, low_name), (high, high_name) in zip(bounds, bounds[1:]):
+    for (low, low_name), (high, high_name) in zip(bounds, bounds[1:], strict=False):
         inside = math.sqrt(max(low, k_min) * min(high, k_max))
         ranges.append(TopologyRange(low, high, low_name, high_name,
                                     _topologies(_features(atlas, inside))))
@@ -296,5 +296,5 @@ def format_table(table: Thresholds) -> str:
     rows += [(r.label(), *(r.curves[name].describe() for name in _COLUMNS))
              for r in table.ranges]
     widths = [max(len(row[j]) for row in rows) for j in range(len(rows[0]))]
-    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths)).rstrip()
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip()
                      for row in rows)

@@ -36,8 +36,8 @@ keeps the rest, flagged ``physical = False``.
 Nothing is reported as traced that has not been checked: the engine brackets every zero of an
 event and of the tangent's ``gamma`` and ``delta`` components inside each step (pairs of zeros
 included) and fails loudly where it cannot locate one; every curve is then compared with the
-expected topology for its ``k`` (starts, ends, junctions, folds and their order), and a curve that differs is a
-failure with a message saying what differs.
+expected topology for its ``k`` (starts, ends, junctions, folds and their order), and a curve
+that differs is a failure with a message saying what differs.
 """
 
 from __future__ import annotations
