@@ -3,7 +3,9 @@
 The engine follows a solution curve through folds in any coordinate, locates
 events, folds and simple branch points exactly, switches branches and closes
 loops (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation
-Methods*, SIAM 2003; H. B. Keller, 1977). It imports numpy and scipy only.
+Methods*, SIAM 2003; H. B. Keller, 1977). It imports numpy and scipy only;
+:func:`certify` proves a traced curve in ball arithmetic with python-flint
+(optional, imported when used).
 
 Example
 -------
@@ -17,6 +19,7 @@ Example
 """
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
+from .certify import Certificate, CertifyOptions, certify
 from .events import Event, box_events
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian
@@ -26,6 +29,8 @@ from .tracker import trace
 
 __all__ = [
     "CallbackError",
+    "Certificate",
+    "CertifyOptions",
     "CallbackShapeError",
     "ContinuationError",
     "Curve",
@@ -37,6 +42,7 @@ __all__ = [
     "Status",
     "box_events",
     "branch_tangents",
+    "certify",
     "check_jacobian",
     "finite_difference_jacobian",
     "locate_branch_point",
