@@ -19,7 +19,7 @@ Example
 """
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
-from .certify import Certificate, CertifyOptions, certify
+from .certification import Certificate, CertifyOptions, certify
 from .events import Event, box_events
 from .options import Options
 from .problem import Problem, check_jacobian, finite_difference_jacobian

@@ -13,10 +13,12 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 
 from continuation import Curve, Event, Options, Problem, SpecialKind, trace
+from continuation.numbers import FLOATS
 
 from ..model.boundaries import BoundarySystem, Condition, corner_point
 from .curves import BoundaryCurve, BoundarySpecialPoint, PointKind, Where, POINT_ORDER
@@ -54,34 +56,50 @@ class Role(enum.Enum):
 
 @dataclass(frozen=True)
 class Tagged:
-    """An engine event with its role and, for a validity event, the condition it checks."""
+    """An engine event with its role and, for a validity event, the condition it checks.
+
+    Event functions take ``(y, numbers)`` (:mod:`continuation.numbers`), so that the same
+    formula is traced in floats and certified in balls. ``certified``, if given, is the
+    function certified in its place: one with the same zeros and signs along the boundary
+    but a simple zero where the traced one touches zero to higher order.
+    """
 
     event: Event
     role: Role
     condition: Condition | None = None
+    certified: Callable | None = None
 
 
-def _edge(name: str, role: Role, function, gradient) -> Tagged:
+def _edge(name: str, role: Role, function, gradient, certified=None) -> Tagged:
     """A terminal event for leaving the domain (its function decreases through zero)."""
-    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient), role)
+    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient), role,
+                  certified=certified)
 
 
 def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
-    """The domain ``0 <= delta <= gamma <= pi/2``, the contact range and the origin, in the chart."""
+    """The domain ``0 <= delta <= gamma <= pi/2``, the contact range and the origin, in the chart.
+
+    ``delta = gamma`` is certified through :meth:`BoundarySystem.edge_function`, which has the
+    sign of ``gamma - delta`` along the boundary and a simple zero at the corner, where
+    ``gamma - delta`` vanishes to third order on ``rs_no_roll``.
+    """
     g = system.scale
-    half_pi = 0.5 * math.pi
+    low = gamma_min / g
 
     def unit(*entries):
         return lambda y: np.array(entries, dtype=float)
 
     return [
-        _edge("delta = 0", Role.DOMAIN_EDGE, lambda y: y[1], unit(0, 1, 0, 0)),
-        _edge("delta = gamma", Role.DOMAIN_EDGE, lambda y: y[0] - y[1], unit(1, -1, 0, 0)),
-        _edge("gamma = pi/2", Role.DOMAIN_EDGE, lambda y: half_pi / g - y[0], unit(-1, 0, 0, 0)),
-        _edge("gamma = gamma_min", Role.GAMMA_MIN, lambda y: y[0] - gamma_min / g,
+        _edge("delta = 0", Role.DOMAIN_EDGE, lambda y, numbers=FLOATS: y[1], unit(0, 1, 0, 0)),
+        _edge("delta = gamma", Role.DOMAIN_EDGE, lambda y, numbers=FLOATS: y[0] - y[1],
+              unit(1, -1, 0, 0), certified=system.edge_function),
+        _edge("gamma = pi/2", Role.DOMAIN_EDGE,
+              lambda y, numbers=FLOATS: 0.5 * numbers.pi / g - y[0], unit(-1, 0, 0, 0)),
+        _edge("gamma = gamma_min", Role.GAMMA_MIN, lambda y, numbers=FLOATS: y[0] - low,
               unit(1, 0, 0, 0)),
-        _edge("beta_L = 0", Role.CORNER, lambda y: y[2], unit(0, 0, 1, 0)),
-        _edge("beta_R = 0", Role.DOMAIN_EDGE, lambda y: math.pi - 2.0 * g * y[0] - y[2] * y[2],
+        _edge("beta_L = 0", Role.CORNER, lambda y, numbers=FLOATS: y[2], unit(0, 0, 1, 0)),
+        _edge("beta_R = 0", Role.DOMAIN_EDGE,
+              lambda y, numbers=FLOATS: numbers.pi - 2.0 * g * y[0] - y[2] * y[2],
               lambda y: np.array([-2.0 * g, 0.0, -2.0 * y[2], 0.0])),
     ]
 
@@ -271,5 +289,6 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     return BoundaryCurve(name=name, k=system.params.k, x=x[keep], s=s[keep],
                          physical=physical[keep], special_points=tuple(points),
                          status=status, ok=ok, residual=residual, engine=(curve,),
-                         start=physical_start, end=end if np.any(physical) else Where.NOWHERE)
+                         start=physical_start, end=end if np.any(physical) else Where.NOWHERE,
+                         engine_rows=np.flatnonzero(keep))
 

@@ -11,7 +11,7 @@ from continuation.numbers import FLOATS
 
 pytest.importorskip("flint")
 
-from continuation.certify import CertifyOptions, Check, certify  # noqa: E402
+from continuation.certification import CertifyOptions, Check, certify  # noqa: E402
 from continuation.numbers import Jet, balls, jets  # noqa: E402
 
 
