@@ -27,156 +27,19 @@ set is not one smooth arc) are not certified.
 from __future__ import annotations
 
 import dataclasses
-import enum
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
+from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import FLOATS, balls
 from .result import Curve, SpecialKind
-from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero
+from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, runs
 
 __all__ = ["Certificate", "CertifyOptions", "Check", "Exclusion", "ProvenPoint", "certify"]
-
-
-class Check(str, enum.Enum):
-    """The test that failed; the values are the names used in messages and files."""
-
-    INPUT = "input"
-    TUBE = "tube"
-    POINT = "point on the curve"
-    CONNECTION = "connection"
-    FOLD = "fold"
-    EVENT = "event"
-
-    def __str__(self) -> str:
-        return self.value
-
-
-@dataclass(frozen=True)
-class CertifyOptions:
-    """Tolerances of :func:`certify` (distances in the max-norm of ``x``).
-
-    Parameters
-    ----------
-    node_tolerance : float
-        A point of the curve may be at most ``node_tolerance (1 + |x|)`` from the curve.
-    special_tolerance : float
-        Largest radius of a special point's box (relative, as above).
-    max_radius : float
-        Largest tube radius, as a fraction of the segment's length; a segment whose tube
-        would be wider is cut in halves.
-    extension : float
-        Tubes reach this fraction of their length beyond both ends (so consecutive tubes
-        overlap).
-    max_depth : int
-        Most halvings of a segment for its tube.
-    leaf_depth : int
-        Most halvings of a tube piece to decide the sign or monotonicity of a function.
-    """
-
-    node_tolerance: float = 1e-9
-    special_tolerance: float = 1e-6
-    max_radius: float = 0.2
-    extension: float = 1e-3
-    max_depth: int = 10
-    leaf_depth: int = 4
-
-    def __post_init__(self) -> None:
-        for name in ("node_tolerance", "special_tolerance", "max_radius", "extension"):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
-                raise ValueError(f"CertifyOptions.{name} = {value!r} must be finite and > 0")
-        for name in ("max_depth", "leaf_depth"):
-            value = getattr(self, name)
-            if not (isinstance(value, int) and 0 <= value <= 40):
-                raise ValueError(f"CertifyOptions.{name} = {value!r} must be an int in [0, 40]")
-
-
-@dataclass(frozen=True)
-class ProvenPoint:
-    """A zero of a fold component or event function, proven simple and unique in a box.
-
-    Attributes
-    ----------
-    kind : SpecialKind
-        ``FOLD`` or ``EVENT``.
-    index : int
-        The point of the curve it belongs to.
-    centre : ndarray
-        Centre of the box ``|x - centre|_inf <= radius`` holding exactly one solution of the
-        augmented system.
-    radius : float
-    distance : float
-        Bound of the distance from the curve's point to the solution.
-    coordinate, event : int or None
-        The fold coordinate, or the event's position.
-    reported : bool
-        False for a zero at an end of the curve that the run does not report as a crossing.
-    """
-
-    kind: SpecialKind
-    index: int
-    centre: np.ndarray = field(repr=False)
-    radius: float
-    distance: float
-    coordinate: int | None = None
-    event: int | None = None
-    reported: bool = True
-
-
-@dataclass(frozen=True)
-class Exclusion:
-    """A neighbourhood ``|x - centre|_inf <= radius`` the certificate does not cover."""
-
-    centre: np.ndarray = field(repr=False)
-    radius: float
-    note: str
-
-
-@dataclass(frozen=True)
-class Certificate:
-    """The result of :func:`certify` for one curve.
-
-    Attributes
-    ----------
-    proven : bool
-    message : str
-        What was proven, or what failed and where.
-    check : Check or None
-        The test that failed (``None`` if proven).
-    segment, point : int or None
-        The first failing segment (between points ``segment`` and ``segment + 1``) or point.
-    segments : int
-    pieces : int
-        Tube pieces (segments after halving).
-    max_radius : float
-        Largest tube radius (max-norm, in the curve's coordinates).
-    node_distance : float
-        Largest proven distance from a point of the curve to the curve of zeros.
-    special_points : tuple of ProvenPoint
-    excluded : tuple of Exclusion
-    seconds : float
-    """
-
-    proven: bool
-    message: str
-    check: Check | None = None
-    segment: int | None = None
-    point: int | None = None
-    segments: int = 0
-    pieces: int = 0
-    max_radius: float = 0.0
-    node_distance: float = 0.0
-    special_points: tuple = ()
-    excluded: tuple = ()
-    seconds: float = 0.0
-
-    def __str__(self) -> str:
-        return self.message
 
 
 @dataclass(frozen=True)
@@ -213,20 +76,32 @@ class _Run:
 
     # -- tubes and points -------------------------------------------------------------------
 
-    def _tube(self, frame: Frame):
+    def _tube(self, frame: Frame, first: bool, last: bool):
         """Proven pieces covering the segment and its extensions, or a message.
+
+        Tubes reach beyond the segment's ends by a fraction of its length, and at least by
+        what a point's box may be off (the boxes of its points must lie in it); the first
+        and the last reach as far as a special point's box may be from the curve's end (a
+        terminal event's zero a little beyond the last point).
 
         A piece whose test fails is cut in parts, as many as its contraction suggests
         (``|I - A H' N|`` grows about linearly with the piece's length), at least two.
         """
-        L, ext = frame.length, self.options.extension
-        pending, pieces = [(-ext * L, (1.0 + ext) * L, 0)], []
+        L = frame.length
+        # beyond each end by a fraction of the length, and at least by what a point's box may
+        # be off it: the boxes of the points at both ends must lie in the tube
+        scale = 1.0 + max(abs(v) for v in frame.x_a)
+        floor = self.options.node_tolerance * scale
+        ext = max(self.options.extension * L, 4.0 * floor)
+        end = max(ext, 2.0 * self.options.special_tolerance * scale)
+        widest = max(self.options.max_radius * L, 8.0 * floor)
+        pending, pieces = [(-end if first else -ext, L + (end if last else ext), 0)], []
         orientation = 0
         while pending:
             a, b, level = pending.pop()
-            piece = solve_piece(self.problem, frame, self.B, a, b, self.options.max_radius * L)
+            piece = solve_piece(self.problem, frame, self.B, a, b, widest, 4.0 * floor)
             if not isinstance(piece, Failure):
-                sigma = sum(vj * kj for vj, kj in zip(frame.v, kernel(piece.jacobian)))
+                sigma = frame.speed(kernel(piece.jacobian))
                 s = 1 if sigma > 0.0 else -1 if sigma < 0.0 else 0
                 if s and orientation in (0, s):
                     orientation = s
@@ -265,17 +140,17 @@ class _Run:
             self._node_jacobians[i] = self.problem.jacobian(self.nodes[i].box, self.B)
         return self._node_jacobians[i]
 
-    def inside(self, box, s: int) -> bool:
-        """Whether the ball vector ``box`` lies in the tube of segment ``s`` (its interior)."""
+    def inside(self, box, s: int, lo: float = -math.inf, hi: float = math.inf) -> bool:
+        """Whether the ball vector ``box`` lies in the tube of segment ``s`` (its interior),
+        with its ``tau`` in ``[lo, hi]``."""
         segment = self.segments[s]
-        found = segment.frame.coordinates(box, self.B)
-        if found is None:
+        tau, y = segment.frame.coordinates(box, self.B)
+        if not (tau >= lo and tau <= hi):
             return False
-        tau, y = found
         for piece in segment.pieces:
             if tau >= piece.lo and tau <= piece.hi:
-                Y = self.B.error(piece.radius)
-                return all(Y.contains_interior(yi) for yi in y)
+                return all(self.B.error(r).contains_interior(yi)
+                           for yi, r in zip(y, piece.radii))
         return False
 
     def arcs(self):
@@ -286,7 +161,7 @@ class _Run:
             frame = Frame.build(x[i], t[i], x[i + 1], t[i + 1])
             if isinstance(frame, str):
                 return _Failure(Check.TUBE, f"segment {i}: {frame}", segment=i)
-            segment = self._tube(frame)
+            segment = self._tube(frame, i == 0, i == m - 1)
             if isinstance(segment, str):
                 return _Failure(Check.TUBE, f"segment {i} (points {i} to {i + 1}): no tube "
                                 f"proven: {segment}", segment=i)
@@ -329,24 +204,22 @@ class _Run:
         return cache[s]
 
     def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
-        """Prove the zero of ``phi`` at point ``i``: the only one on the segments beside it."""
+        """Prove the zero of ``phi`` at point ``i``: the only one in the monotone stretch
+        through the point (the last run of the segment before, the first of the one after)."""
         m = len(self.x) - 1
-        beside = [s for s in (i - 1, i) if 0 <= s < m]
-        runs = []
-        for s in beside:
-            leaves = self._leaves(function, s, cache)
-            if leaves is None:
-                return self._fail(function, f"its sign and slope are not decided on segment {s}",
-                                  segment=s, point=i)
-            for leaf in leaves:
-                if not runs or runs[-1] != leaf:
-                    runs.append(leaf)
-        monotone = [leaf for leaf in runs if not leaf.excluded]
-        if len(monotone) != 1 or (runs[0].excluded and runs[-1].excluded):
+        stretch = []
+        if i > 0:
+            before = self._leaves(function, i - 1, cache)
+            stretch.append((i - 1, runs(before)[-1] if before else None))
+        if i < m:
+            after = self._leaves(function, i, cache)
+            stretch.append((i, runs(after)[0] if after else None))
+        signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
+        if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:
             return self._fail(function, f"the zero at point {i} is not proven to be the only one "
-                              "next to it (no single monotone stretch)", segment=beside[0],
-                              point=i)
-        direction = monotone[0].sign
+                              "next to it (no monotone stretch through it)",
+                              segment=stretch[0][0], point=i)
+        direction = signs.pop()
         if reported and function.direction and direction != function.direction:
             return self._fail(function, f"its zero at point {i} is reported but crosses the "
                               "other way", point=i)
@@ -361,9 +234,9 @@ class _Run:
             return self._fail(function, f"its zero at point {i}: {box}", point=i)
         centre, radius = box
         balls_ = [self.B.arb(c, radius) for c in centre]
-        if not any(self.inside(balls_, s) for s in beside):
+        if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch):
             return self._fail(function, f"the box of its zero at point {i} is not in the tubes "
-                              "beside it", point=i)
+                              "of the stretch through it", point=i)
         distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
         kind = SpecialKind.EVENT if function.event is not None else SpecialKind.FOLD
         self.proven.append(ProvenPoint(kind, i, np.array(centre), radius, distance,
@@ -408,6 +281,22 @@ class _Run:
         value = function.value(self.nodes[i].box, J, self.B)
         return 1 if value > 0.0 else -1 if value < 0.0 else 0
 
+    def _vanishes_at_end(self, function: Function, i: int) -> bool:
+        """Whether ``phi`` may vanish in the box of an event proven at the end point ``i``.
+
+        A curve ends at a terminal event's zero; its last point may lie a rounding beyond it,
+        so a function vanishing there too (a fold component at the corner where the curve
+        ends) vanishes between the last two points: a zero at the end, not a crossing.
+        """
+        for p in self.proven:
+            if p.index == i and p.kind is SpecialKind.EVENT:
+                box = [self.B.arb(c, p.radius) for c in p.centre]
+                J = self.problem.jacobian(box, self.B) if function.event is None else None
+                value = function.value(box, J, self.B)
+                if not (value > 0.0 or value < 0.0):
+                    return True
+        return False
+
     def zeros(self, function: Function):
         """Every zero of ``phi`` along the branch is reported (or at an end) and proven."""
         m = len(self.x) - 1
@@ -415,15 +304,18 @@ class _Run:
         excluded: dict = {}
         self._exclude(function, 0, m, reported, excluded)
         signs = [self._sign_at(function, i, excluded) for i in range(m + 1)]
+        for i in (0, m):
+            if signs[i] and self._vanishes_at_end(function, i):
+                signs[i] = 0
         at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
             if failure is not None:
                 return failure
-        near = {s for i in at_zero for s in (i - 1, i)}
+            signs[i] = 0  # the zero proven at the point: counted there, not on its segments
         for s in range(m):
-            if s in near or s in excluded:
+            if s in excluded:
                 continue
             leaves = self._leaves(function, s, cache)
             crossings = None if leaves is None else count_zeros(leaves, signs[s], signs[s + 1])
@@ -441,14 +333,17 @@ class _Run:
 
 
 def _functions(curve: Curve, events, fold_coordinates) -> list[Function]:
+    """Events reported at an end first, then the other events, then folds: the boxes proven
+    at the ends are consulted for the functions after them (:meth:`_Run._vanishes_at_end`)."""
     names = curve.problem.names if curve.problem is not None and curve.problem.names else None
-    functions = []
+    ends = {p.event for p in curve.special_points if p.kind is SpecialKind.EVENT
+            and p.index in (0, len(curve) - 1)}
+    functions = [Function(f"event '{event.name}'", event=event, position=j,
+                          direction=event.direction) for j, event in enumerate(events)]
+    functions.sort(key=lambda f: f.position not in ends)
     for c in fold_coordinates:
         label = names[c] if names and c < len(names) else f"x[{c}]"
         functions.append(Function(f"fold in {label}", coordinate=c))
-    for j, event in enumerate(events):
-        functions.append(Function(f"event '{event.name}'", event=event, position=j,
-                                  direction=event.direction))
     return functions
 
 
@@ -538,7 +433,9 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     if fold_coordinates is None:
         fold_coordinates = curve.options.fold_coordinates if curve.options is not None else ()
     failure = _check(curve, problem, events, fold_coordinates)
-    curve, merged = _merge_duplicates(curve, options.node_tolerance)
+    curve, merged = _merge_duplicates(curve, _DUPLICATE)
+    if failure is None and len(curve) < 2:
+        failure = _Failure(Check.INPUT, "all its points are one point (to rounding)")
     run = _Run(curve, problem, events, B, options)
     if failure is None:
         failure = run.arcs()
@@ -553,7 +450,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
                   node_distance=run.node_distance, special_points=tuple(run.proven),
                   seconds=time.perf_counter() - start)
     note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
-        "point to within node_tolerance)" if merged else ""
+        "point to rounding)" if merged else ""
     if failure is not None:
         return Certificate(False, f"not proven: {failure.check}: {failure.message}{note}",
                            failure.check, failure.segment, failure.point, **common)
@@ -561,6 +458,10 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     return Certificate(True, f"proven: {m} segments ({pieces} tube pieces, radius <= "
                        f"{radius:.2g}), points within {run.node_distance:.2g} of the curve, "
                        f"{len(run.proven)} zero(s) of folds and events proven{note}", **common)
+
+
+#: points this close (relative to 1 + |x|) repeat the point before: a special point located twice
+_DUPLICATE = 1e-13
 
 
 def _merge_duplicates(curve: Curve, tolerance: float) -> tuple[Curve, list]:

@@ -1,11 +1,11 @@
 r"""Krawczyk's test in ball arithmetic: tubes around curve segments, slices, square systems.
 
 A segment between two curve points ``x_a`` and ``x_b`` (chord ``L v``, ``|v| = 1``) is given
-the coordinates ``x = x_a + tau v + N (c(tau) + y)``, where ``N`` completes ``v`` to an
-orthonormal frame (floats, used as exact numbers) and ``c`` is the cubic Hermite interpolant,
-over the chord, of the two points and their tangents (the curve as a graph over the chord,
-error ``O(L^4)``). For the zeros of ``H`` in a piece ``tau in T`` of the tube ``|y|_inf <= r``
-the parametrised Krawczyk operator (Krawczyk 1969; Neumaier, *Interval Methods for Systems of
+the coordinates ``x = x_a + tau v + N (c(tau) + y)``, where ``N`` picks the coordinates other
+than the one the chord moves most in (:class:`Frame`: the curve as a graph over that
+coordinate, ``y`` offsets along the axes) and ``c`` is the cubic Hermite interpolant of the
+two points and their tangents (error ``O(L^4)``). For the zeros of ``H`` in a piece
+``tau in T`` of the tube ``|y_k| <= r_k`` the parametrised Krawczyk operator (Krawczyk 1969; Neumaier, *Interval Methods for Systems of
 Equations*, 1990, sec. 5.1; for curves van den Berg, Lessard & Mischaikow, Math. Comp. 79
 (2010) 1565-1584) is
 
@@ -35,6 +35,10 @@ from .numbers import FLOATS, Jet, jets
 
 __all__ = ["Failure", "Frame", "Piece", "Slice", "determinant", "kernel", "inverse",
            "solve_piece", "solve_slice", "square_box"]
+
+
+#: segments shorter than this (relative to 1 + |x|) are framed along their tangents
+_SHORT = 1e-6
 
 
 def _matvec(M, v):
@@ -111,19 +115,24 @@ class Failure:
 
 @dataclass(frozen=True)
 class Frame:
-    """The coordinates of one segment's tube: ``x = x_a + tau v + N (c(tau) + y)``.
+    """The coordinates of one segment's tube: a graph over the chord's largest coordinate.
 
-    ``v`` is the unit chord, ``N`` (``n1 x n``) its orthonormal complement (floats, exact as
-    numbers), ``length`` the chord's length, and ``c(tau) = sum_p a_p tau^p`` (``p <= 3``,
-    ``coefficients[p] = a_p``) the centerline's offset from the chord.
+    With ``p`` the coordinate in which the chord ``x_b - x_a = L v`` moves most, a point is
+    ``x = x_a + tau v + sum_k (c_k(tau) + y_k) e_{axes[k]}`` (``axes`` the other coordinates):
+    the slice ``tau`` is the hyperplane ``x_p = x_a,p + tau v_p`` and ``y`` are offsets along
+    the coordinate axes, so a tube may be thinner in one coordinate than in another (a
+    coordinate near zero, like ``w`` where a boundary approaches ``beta_L = 0``) and
+    coordinates are exact to compute. ``c(tau) = sum_q a_q tau^q`` (``q <= 3``,
+    ``coefficients[q] = a_q``) is the cubic Hermite interpolant of the two points and
+    tangents (the curve as a graph over ``x_p``, error ``O(L^4)``).
     """
 
     x_a: list
     v: list
-    N: list
+    p: int
+    axes: tuple
     length: float
     coefficients: list
-    eta: list = field(default_factory=list, repr=False, compare=False)
 
     @classmethod
     def build(cls, x_a, t_a, x_b, t_b) -> "Frame | str":
@@ -134,27 +143,39 @@ class Frame:
         length = math.sqrt(sum(di * di for di in d))
         if not (length > 0.0 and math.isfinite(length)):
             return f"its points coincide or are not finite (chord length {length!r})"
+        if length <= _SHORT * (1.0 + max(abs(xj) for xj in x_a)):
+            return cls._short(x_a, t_a, t_b, d)
         v = [di / length for di in d]
-        along_a = sum(p * q for p, q in zip(v, t_a))
-        along_b = sum(p * q for p, q in zip(v, t_b))
+        p = max(range(len(v)), key=lambda j: abs(v[j]))
+        along_a, along_b = t_a[p] / v[p], t_b[p] / v[p]
         if not (along_a > 0.0 and along_b > 0.0):
-            return (f"a tangent points against the chord (cosines {along_a:.3g}, "
+            return (f"a tangent turns against the chord in x[{p}] (ratios {along_a:.3g}, "
                     f"{along_b:.3g}): the curve is not a graph over it")
-        # Householder reflection taking e_1 to -sign(v_0) v; its other columns span v's complement
-        u = list(v)
-        u[0] += math.copysign(1.0, v[0]) if v[0] != 0.0 else 1.0
-        uu = sum(ui * ui for ui in u)
-        n1 = len(v)
-        N = [[(1.0 if i == j else 0.0) - 2.0 * u[i] * u[j] / uu for j in range(1, n1)]
-             for i in range(n1)]
-        NT = list(zip(*N))
-        c_b = [sum(col[i] * d[i] for i in range(n1)) for col in NT]
-        m_a = [sum(col[i] * t_a[i] for i in range(n1)) / along_a for col in NT]
-        m_b = [sum(col[i] * t_b[i] for i in range(n1)) / along_b for col in NT]
+        axes = tuple(j for j in range(len(v)) if j != p)
+        c_b = [d[j] - length * v[j] for j in axes]  # rounding: the chord's end is (L, 0)
+        m_a = [t_a[j] / along_a - v[j] for j in axes]
+        m_b = [t_b[j] / along_b - v[j] for j in axes]
         # cubic Hermite through (0, 0, m_a) and (L, c_b, m_b), in powers of tau
         a2 = [(3.0 * cb / length - 2.0 * ma - mb) / length for cb, ma, mb in zip(c_b, m_a, m_b)]
         a3 = [(ma + mb - 2.0 * cb / length) / length ** 2 for cb, ma, mb in zip(c_b, m_a, m_b)]
-        return cls(x_a, v, N, length, [[0.0] * len(c_b), m_a, a2, a3])
+        return cls(x_a, v, p, axes, length, [[0.0] * len(axes), m_a, a2, a3])
+
+    @classmethod
+    def _short(cls, x_a, t_a, t_b, d) -> "Frame | str":
+        """The frame of a segment too short for its chord's direction to be known (its points
+        are only known to rounding): along the mean tangent, the centerline a straight line
+        to the second point (the curve is off it by ``kappa L^2``)."""
+        t = [a + b for a, b in zip(t_a, t_b)]
+        size = math.sqrt(sum(tj * tj for tj in t))
+        v = [tj / size for tj in t]
+        p = max(range(len(v)), key=lambda j: abs(v[j]))
+        length = d[p] / v[p]
+        if not length > 0.0:
+            return "its points are in the wrong order along the tangent"
+        axes = tuple(j for j in range(len(v)) if j != p)
+        zero = [0.0] * len(axes)
+        slope = [(d[j] - length * v[j]) / length for j in axes]
+        return cls(x_a, v, p, axes, length, [zero, slope, zero, zero])
 
     def _c(self, tau, order: int = 0):
         """``c``, ``c'`` or ``c''`` at ``tau`` (a number), by Horner's rule."""
@@ -166,99 +187,119 @@ class Frame:
         return [6.0 * a3[i] * tau + 2.0 * a2[i] for i in range(len(a0))]
 
     def point(self, tau, w) -> list:
-        """``x_a + tau v + N w`` for a number ``tau`` and a vector ``w`` in ``R^n``."""
-        Nw = _matvec(self.N, w)
-        return [self.x_a[j] + tau * self.v[j] + Nw[j] for j in range(len(self.v))]
+        """``x_a + tau v + sum_k w_k e_{axes[k]}`` for a number ``tau`` and offsets ``w``."""
+        x = [self.x_a[j] + tau * self.v[j] for j in range(len(self.v))]
+        for k, j in enumerate(self.axes):
+            x[j] = x[j] + w[k]
+        return x
 
     def tube_box(self, tau, y) -> list:
-        """``x_a + tau v + N (c(tau) + y)`` for a number ``tau`` and a vector ``y``."""
+        """``x_a + tau v + (c(tau) + y)`` along the axes, for a number ``tau`` and offsets ``y``."""
         return self.point(tau, [ci + yi for ci, yi in zip(self._c(tau), y)])
 
+    def columns(self, J) -> list:
+        """``H' N``: the columns of ``J`` of the axes (the derivative along the offsets)."""
+        return [[row[j] for j in self.axes] for row in J]
+
     def centerline_jets(self, tau) -> list:
-        """The centerline ``p(tau) = x_a + tau v + N c(tau)`` as jets: ``p``, ``p'``, ``p''``."""
+        """The centerline ``x_a + tau v + c(tau)`` as jets: value, first and second derivative."""
         p = self.point(tau, self._c(tau))
-        p1 = [vj + s for vj, s in zip(self.v, _matvec(self.N, self._c(tau, 1)))]
-        p2 = _matvec(self.N, self._c(tau, 2))
+        p1 = self.point(0.0, self._c(tau, 1))
+        p1 = [p1j - x0 + vj for p1j, x0, vj in zip(p1, self.x_a, self.v)]
+        c2 = self._c(tau, 2)
+        p2 = [0.0] * len(p)
+        for k, j in enumerate(self.axes):
+            p2[j] = c2[k]
         return [Jet(p[j], p1[j], p2[j]) for j in range(len(p))]
 
     def slope(self, tau) -> list:
-        """``p'(tau)``."""
-        return [vj + s for vj, s in zip(self.v, _matvec(self.N, self._c(tau, 1)))]
+        """The centerline's derivative ``v + c'(tau)`` along the axes."""
+        out = list(self.v)
+        for k, j in enumerate(self.axes):
+            out[j] = out[j] + self._c(tau, 1)[k]
+        return out
+
+    def speed(self, k):
+        """``d tau / d lambda`` along a kernel vector ``k`` (``dx/d lambda = k``): ``k_p / v_p``."""
+        return k[self.p] / self.v[self.p]
 
     def coordinates(self, box, B):
-        """``(tau, y)`` of a ball vector ``box`` (rigorous), or ``None``.
-
-        ``M = [v N]`` is orthogonal only to rounding: with ``|M^T M - I|_inf <= eta < 1``
-        the exact coordinates ``M^{-1} (x - x_a)`` are within ``eta / (1 - eta)`` times
-        ``|M^T (x - x_a)|_inf`` of ``M^T (x - x_a)``.
-        """
-        rows = [self.v] + [list(col) for col in zip(*self.N)]
-        if not self.eta:
-            S = B.matmul(rows, [list(r) for r in zip(*rows)])
-            self.eta.append(max(sum(_upper(S[i][j] - (1.0 if i == j else 0.0))
-                                    for j in range(len(S))) for i in range(len(S))))
-        eta = self.eta[0]
-        if not eta < 0.5:
-            return None
-        z = _matvec(rows, [b - a for b, a in zip(box, self.x_a)])
-        slack = eta / (1.0 - eta) * max(_upper(zi) for zi in z) * (1.0 + 1e-12)
-        z = [zi + B.error(slack) for zi in z]
-        c = self._c(z[0])
-        return z[0], [zi - ci for zi, ci in zip(z[1:], c)]
+        """``(tau, y)`` of a ball vector ``box`` (exact: ``tau`` from ``x_p``)."""
+        tau = (B.number(box[self.p]) - self.x_a[self.p]) / self.v[self.p]
+        c = self._c(tau)
+        return tau, [box[j] - self.x_a[j] - tau * self.v[j] - ck
+                     for ck, j in zip(c, self.axes)]
 
 
 @dataclass(frozen=True)
 class Piece:
-    """A proven piece ``lo <= tau <= hi`` of a tube of radius ``radius``.
+    """A proven piece ``lo <= tau <= hi`` of a tube whose offsets are within ``radii``.
 
-    ``tau`` is the ball of the piece, ``y`` the Krawczyk image ``K`` (the arc's ``y`` for
-    every tau in the piece), ``arc`` the box ``x_a + T v + N (c(T) + K)`` holding the arc,
-    ``jacobian`` ``H'`` over the tube box, ``A`` the preconditioner and ``rows`` upper bounds
-    of the row sums of ``|I - A H' N|`` (each < 1).
+    ``tau`` is the ball of the piece, ``y`` the Krawczyk image ``K`` (the arc's offsets for
+    every tau in the piece), ``arc`` the box ``x_a + T v + c(T) + K`` holding the arc,
+    ``jacobian`` ``H'`` over the tube box, ``A`` the preconditioner and ``bounds`` upper bounds
+    of ``|I - A H' N|`` entry by entry (its weighted row sums below 1).
     """
 
     lo: float
     hi: float
-    radius: float
+    radii: list
     tau: object
     y: list
     arc: list
     jacobian: list
     A: list = field(repr=False)
-    rows: list = field(repr=False)
+    bounds: list = field(repr=False)
+
+    @property
+    def radius(self) -> float:
+        """The largest offset radius (max-norm, in the curve's coordinates)."""
+        return max(self.radii)
 
 
 @dataclass(frozen=True)
 class Slice:
-    """The zero of one slice: in ``box`` (balls); ``radius`` bounds its ``y``."""
+    """The zero of one slice: in ``box`` (balls); ``radius`` bounds its offsets."""
 
     box: list
     radius: float
 
 
-def _krawczyk(frame, B, J, AG, A, radius):
-    """``K = -A G + (I - A H'(X) N) Y`` for ``Y = [-radius, radius]^n``.
-
-    Returns ``K`` and the upper bounds of the row sums of ``|I - A H'(X) N|``.
-    """
-    n = len(AG)
-    C = B.matmul(A, B.matmul(J, frame.N))
-    rows = [sum(_upper((1.0 if i == j else 0.0) - C[i][j]) for j in range(n))
-            for i in range(n)]
-    K = [-AG[i] + B.error(rows[i] * radius * (1.0 + 1e-15)) for i in range(n)]
-    return K, rows
+def _contraction(frame, B, J, A) -> list:
+    """Upper bounds of ``|I - A H'(X) N|``, entry by entry (floats)."""
+    C = B.matmul(A, frame.columns(J))
+    n = len(C)
+    return [[_upper((1.0 if i == j else 0.0) - C[i][j]) for j in range(n)] for i in range(n)]
 
 
-def _contains(radius: float, K, B) -> bool:
-    Y = B.error(radius)
-    return all(Y.contains_interior(k) for k in K)
+def _image(AG, bounds, radii, B) -> list:
+    """``K = -A G + (I - A H' N) Y`` with ``|Y_j| <= radii[j]``, from the entry bounds."""
+    return [-AG[i] + B.error(sum(b * r for b, r in zip(bounds[i], radii)) * (1.0 + 1e-12))
+            for i in range(len(AG))]
+
+
+def _inside(K, radii, B) -> bool:
+    return all(B.error(r).contains_interior(k) for k, r in zip(K, radii))
+
+
+def _needed(steps, bounds, floor: float) -> list | None:
+    """Radii ``r`` with ``steps + bounds r < r`` (the Krawczyk condition from the entry bounds):
+    ``r = (I - bounds)^{-1} (steps + floor)`` with a margin; ``None`` if there are none."""
+    n = len(steps)
+    M = [[(1.0 if i == j else 0.0) - bounds[i][j] for j in range(n)] for i in range(n)]
+    Minv = inverse(M)
+    if Minv is None:
+        return None
+    rhs = [1.001 * s + floor for s in steps]
+    radii = [1.01 * sum(m * r for m, r in zip(row, rhs)) for row in Minv]
+    return radii if all(r > 0.0 and math.isfinite(r) for r in radii) else None
 
 
 def _preconditioner(problem, frame, tau: float):
     """``A ~ (H'(x) N)^{-1}`` at the centerline point ``tau`` (floats), or ``None``."""
     x = frame.point(tau, frame._c(tau))
     J = [[float(v) for v in row] for row in problem.jacobian(x, FLOATS)]
-    return inverse([_matvec(list(zip(*frame.N)), row) for row in J])
+    return inverse(frame.columns(J))
 
 
 def _residual_form(problem, frame, B, lo: float, hi: float):
@@ -276,7 +317,7 @@ def _residual_form(problem, frame, B, lo: float, hi: float):
     slope = _matvec(problem.jacobian(p0, B), frame.slope(t0))
     over = problem.residual(frame.centerline_jets(T), jets(B))
     offset = B.error(half)
-    square = B.arb(0.5 * half * half, 0.5 * half * half) * (1.0 + 1e-15)
+    square = B.arb(0.5 * half * half, 0.5 * half * half) * (1.0 + 1e-12)
     G = []
     for h0, d, g2 in zip(H0, slope, over):
         dd = g2.dd if type(g2) is Jet else 0.0
@@ -284,57 +325,71 @@ def _residual_form(problem, frame, B, lo: float, hi: float):
     return T, G
 
 
-def solve_piece(problem, frame, B, lo: float, hi: float, max_radius: float):
-    """Krawczyk's test on the piece ``lo <= tau <= hi``: a :class:`Piece` or a :class:`Failure`."""
+def solve_piece(problem, frame, B, lo: float, hi: float, max_radius: float,
+                min_radius: float = 0.0):
+    """Krawczyk's test on the piece ``lo <= tau <= hi``: a :class:`Piece` or a :class:`Failure`.
+
+    Each offset's radius starts at twice its Newton step, at least ``min_radius`` (so that
+    the small boxes of points and special points fit in the tube), and grows while the test
+    fails and the operator contracts.
+    """
     A = _preconditioner(problem, frame, 0.5 * (lo + hi))
     if A is None:
         return Failure("the Jacobian is singular or not finite on the segment")
     T, G = _residual_form(problem, frame, B, lo, hi)
     AG = _matvec(A, G)
-    size = max(_upper(g) for g in AG)
-    if not math.isfinite(size):
+    steps = [_upper(g) for g in AG]
+    if not all(math.isfinite(v) for v in steps):
         return Failure("the residual is not finite on the segment")
-    n = len(AG)
-    radius = 2.0 * size + 1e-300
-    for _ in range(4):
-        if not radius <= max_radius:
-            return Failure(f"the tube would need a radius of {radius:.3g}, more than "
-                           f"{max_radius:.3g} (Newton step of the residual {size:.3g})")
-        X = frame.tube_box(T, [B.error(radius)] * n)
+    floor = max(min_radius, 1e-3 * max(steps), 1e-300)
+    radii = [max(2.0 * v, floor) for v in steps]
+    for _ in range(5):
+        if not max(radii) <= max_radius:
+            return Failure(f"the tube would need a radius of {max(radii):.3g}, more than "
+                           f"{max_radius:.3g} (Newton step of the residual {max(steps):.3g})")
+        X = frame.tube_box(T, [B.error(r) for r in radii])
         J = problem.jacobian(X, B)
-        K, rows = _krawczyk(frame, B, J, AG, A, radius)
-        contraction = max(rows)
-        if _contains(radius, K, B):
-            return Piece(lo, hi, radius, T, K, frame.tube_box(T, K), J, A, rows)
-        if not contraction < 1.0:
+        bounds = _contraction(frame, B, J, A)
+        K = _image(AG, bounds, radii, B)
+        if _inside(K, radii, B):
+            return Piece(lo, hi, radii, T, K, frame.tube_box(T, K), J, A, bounds)
+        contraction = max(sum(row) for row in bounds)
+        need = _needed(steps, bounds, floor) if contraction < 1.0 else None
+        if need is None:
             return Failure(f"Krawczyk's operator does not contract (|I - A H'N| = "
                            f"{contraction:.3g})", contraction)
-        radius = max(2.0 * radius, 1.5 * max(_upper(k) for k in K))
+        if all(n_ <= r for n_, r in zip(need, radii)):
+            # a thinner tube inside this one: the bounds of H' over this one still hold
+            K = _image(AG, bounds, need, B)
+            if _inside(K, need, B):
+                return Piece(lo, hi, need, T, K, frame.tube_box(T, K), J, A, bounds)
+        radii = [max(r, 1.2 * n_) for r, n_ in zip(radii, need)]
     return Failure("Krawczyk's test fails at every radius tried")
 
 
 def solve_slice(problem, frame, B, piece: Piece, tau: float, tolerance: float):
     """The zero of the slice ``tau`` inside a proven piece: a :class:`Slice` or a message.
 
-    The slice's box ``x_a + tau v + N (c(tau) + Y)`` (``Y`` of radius at most the piece's)
-    lies in the piece's tube box, so the piece's ``A`` and its bounds of ``|I - A H' N|``
-    serve: ``K = -A H(p(tau)) + (I - A H' N) Y``.
+    The slice's box ``x_a + tau v + c(tau) + Y`` (``Y`` within the piece's radii) lies in the
+    piece's tube box, so the piece's ``A`` and its bounds of ``|I - A H' N|`` serve:
+    ``K = -A H(p(tau)) + (I - A H' N) Y``.
     """
     t = B.number(tau)
     AH = _matvec(piece.A, problem.residual(frame.point(t, frame._c(t)), B))
-    size = max(_upper(h) for h in AH)
-    q = max(piece.rows)
-    if not math.isfinite(size):
+    steps = [_upper(h) for h in AH]
+    if not all(math.isfinite(v) for v in steps):
         return "the residual is not finite there"
-    radius = 2.0 * size / (1.0 - q) + 1e-300
-    if not radius <= tolerance:
-        return f"the nearest zero is about {size:.3g} away, more than {tolerance:.3g}"
-    if not radius < piece.radius:
-        return f"its zero is not inside the tube (radius {radius:.3g} >= {piece.radius:.3g})"
-    K = [-AH[i] + B.error(piece.rows[i] * radius * (1.0 + 1e-15)) for i in range(len(AH))]
-    if not _contains(radius, K, B):
+    radii = _needed(steps, piece.bounds, 1e-3 * max(steps) + 1e-300)
+    if radii is None:
+        return "Krawczyk's operator does not contract on its slice"
+    if not max(radii) <= tolerance:
+        return f"the nearest zero is about {max(steps):.3g} away, more than {tolerance:.3g}"
+    if not all(r < R for r, R in zip(radii, piece.radii)):
+        return "its zero is not inside the tube"
+    K = _image(AH, piece.bounds, radii, B)
+    if not _inside(K, radii, B):
         return "Krawczyk's test fails on its slice"
-    return Slice(frame.tube_box(t, K), radius)
+    return Slice(frame.tube_box(t, K), max(radii))
 
 
 def square_box(F, DF, x_hat, B, tolerance: float):
@@ -364,8 +419,8 @@ def square_box(F, DF, x_hat, B, tolerance: float):
         C = B.matmul(A, DF(box, B))
         rows = [sum(_upper((1.0 if i == j else 0.0) - C[i][j]) for j in range(n))
                 for i in range(n)]
-        K = [-FA[i] + B.error(rows[i] * radius * (1.0 + 1e-15)) for i in range(n)]
-        if _contains(radius, K, B):
+        K = [-FA[i] + B.error(rows[i] * radius * (1.0 + 1e-12)) for i in range(n)]
+        if _inside(K, [radius] * n, B):
             return centre, radius
         if not max(rows) < 1.0:
             return f"Krawczyk's operator does not contract (|I - A DF| = {max(rows):.3g})"

@@ -21,10 +21,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .krawczyk import Failure, determinant, kernel, solve_piece, square_box
+from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, square_box
 from .numbers import FLOATS, Jet, jets
 
-__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero"]
+__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero", "runs"]
 
 
 @dataclass(frozen=True)
@@ -85,10 +85,27 @@ def _sign(x) -> int:
 
 @dataclass(frozen=True)
 class Leaf:
-    """A stretch of one segment: ``sign`` of ``phi`` (``excluded``) or of ``d phi / d tau``."""
+    """A stretch ``lo <= tau <= hi`` of one segment: ``sign`` of ``phi`` (``excluded``) or of
+    ``d phi / d tau`` (monotone)."""
 
     excluded: bool
     sign: int
+    lo: float = -math.inf
+    hi: float = math.inf
+
+    def same(self, other: Leaf) -> bool:
+        return self.excluded == other.excluded and self.sign == other.sign
+
+
+def runs(leaves) -> list:
+    """Consecutive leaves of the same kind and sign merged (their ranges joined)."""
+    out: list = []
+    for leaf in leaves:
+        if out and out[-1].same(leaf):
+            out[-1] = Leaf(leaf.excluded, leaf.sign, out[-1].lo, leaf.hi)
+        else:
+            out.append(leaf)
+    return out
 
 
 def _leaf(function, piece, frame, problem, B, orientation: int):
@@ -96,44 +113,51 @@ def _leaf(function, piece, frame, problem, B, orientation: int):
 
     ``phi`` is excluded from zero if its enclosure over the piece's arc box is, or if its
     centred form in ``tau`` is: ``phi(x(tau_0)) + (d phi / d tau)(T) (T - tau_0)``, with the
-    value on the thin slice ``tau_0`` and ``d phi / d tau = D phi [k] / (v . k)``.
+    value at the arc's point on the slice ``tau_0`` (proven in a thin box) and
+    ``d phi / d tau = D phi [k] / (d tau / d lambda)``.
     """
     s = _sign(function.value(piece.arc, piece.jacobian, B))
     if s:
-        return Leaf(True, s)
+        return Leaf(True, s, piece.lo, piece.hi)
     k = kernel(piece.jacobian)
     slope = function.slope(piece.arc, k, problem, B)
     d = _sign(slope)
     if d:
-        return Leaf(False, d * orientation)
+        return Leaf(False, d * orientation, piece.lo, piece.hi)
     mid = 0.5 * (piece.lo + piece.hi)
-    centre = frame.tube_box(B.number(mid), piece.y)
+    thin = solve_slice(problem, frame, B, piece, mid, math.inf)  # the arc's point at tau_0
+    centre = thin.box if not isinstance(thin, str) else frame.tube_box(B.number(mid), piece.y)
     J = problem.jacobian(centre, B) if function.event is None else None
-    sigma = sum(vj * kj for vj, kj in zip(frame.v, k))
+    sigma = frame.speed(k)
     half = max(piece.hi - mid, mid - piece.lo) * (1.0 + 1e-15)
     s = _sign(function.value(centre, J, B) + slope / sigma * B.error(half))
-    return Leaf(True, s) if s else None
+    return Leaf(True, s, piece.lo, piece.hi) if s else None
 
 
-def classify(function, segment, problem, B, orientation: int, depth: int = 4):
+#: most tube pieces one segment may be cut into to decide one function on it
+LEAF_BUDGET = 200
+
+
+def classify(function, segment, problem, B, orientation: int, depth: int = 40):
     """The leaves of ``phi`` on one segment (a list in order of ``tau``), or ``None``.
 
     ``segment`` has ``pieces`` (proven tube pieces) and ``frame``. A piece that neither test
     decides is cut in halves, each with its own, thinner tube (Krawczyk's test again on the
-    shorter piece: the arc there is the same, being the only zero in either tube), down to
-    ``depth`` times.
+    shorter piece: the arc there is the same, being the only zero in either tube); only the
+    undecided halves are cut again, so next to a zero with a small slope the leaves get as
+    short as the slope needs, down to ``depth`` cuts and :data:`LEAF_BUDGET` pieces.
     """
-    leaves = []
+    found, budget = [], LEAF_BUDGET
     for piece in segment.pieces:
         stack = [(piece, 0)]
-        found = []
         while stack:
             current, level = stack.pop()
             leaf = _leaf(function, current, segment.frame, problem, B, orientation)
             if leaf is not None:
-                found.append((current.lo, leaf))
+                found.append(leaf)
                 continue
-            if level >= depth:
+            budget -= 2
+            if level >= depth or budget < 0:
                 return None
             mid = 0.5 * (current.lo + current.hi)
             for a, b in ((mid, current.hi), (current.lo, mid)):
@@ -141,30 +165,46 @@ def classify(function, segment, problem, B, orientation: int, depth: int = 4):
                 if isinstance(sub, Failure):
                     return None
                 stack.append((sub, level + 1))
-        leaves += [leaf for _, leaf in sorted(found, key=lambda item: item[0])]
-    return leaves
+    return sorted(found, key=lambda leaf: leaf.lo)
 
 
 def count_zeros(leaves, left: int, right: int):
-    """Zeros of ``phi`` between two points with signs ``left`` and ``right`` (nonzero).
+    """Zeros of ``phi`` on a segment between its end points, whose signs are ``left`` and
+    ``right``; 0 for an end where ``phi`` vanishes (a zero proven there, in the monotone run
+    next to it, which is not counted here).
 
     Returns a list of crossing directions (``+1`` increasing along the curve), or ``None``
-    when a turning point between two monotone leaves leaves the count open.
+    when the count is open (a turning point between two monotone runs, or a run
+    inconsistent with the signs).
     """
-    runs = []  # merged leaves
-    for leaf in leaves:
-        if runs and runs[-1] == leaf:
-            continue
-        runs.append(leaf)
-    crossings, current = [], left
-    for i, run in enumerate(runs):
+    stretch = runs(leaves)
+    if not stretch:
+        return None
+    if left == 0 and right == 0 and len(stretch) == 1:
+        # one monotone run with a zero proven at both ends: one zero (a monotone function
+        # vanishes once), e.g. a crossing located a rounding after the start
+        return [] if not stretch[0].excluded else None
+    if left == 0:
+        if stretch[0].excluded:
+            return None
+        current, stretch = stretch[0].sign, stretch[1:]  # past the zero: the slope's sign
+    else:
+        current = left
+    if right == 0:
+        if not stretch or stretch[-1].excluded:
+            return None
+        target, stretch = -stretch[-1].sign, stretch[:-1]  # before the zero
+    else:
+        target = right
+    crossings = []
+    for i, run in enumerate(stretch):
         if run.excluded:
             if run.sign != current:
                 return None  # cannot happen on a true arc; no claim
             continue
-        following = runs[i + 1] if i + 1 < len(runs) else None
+        following = stretch[i + 1] if i + 1 < len(stretch) else None
         if following is None:
-            end = right
+            end = target
         elif following.excluded:
             end = following.sign
         else:
@@ -174,7 +214,7 @@ def count_zeros(leaves, left: int, right: int):
                 return None
             crossings.append(run.sign)
         current = end
-    return crossings if current == right else None
+    return crossings if current == target else None
 
 
 def prove_zero(function, problem, x_hat, B, tolerance: float):

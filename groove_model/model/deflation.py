@@ -37,6 +37,8 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
+from continuation.numbers import balls
+
 __all__ = ["deflated_torque", "f1", "f2"]
 
 #: below this |beta_L - beta_R| the divided difference is a quadrature of f' (in floats)
@@ -53,8 +55,9 @@ NODES = {False: 6, True: 12}
 
 def _gauss_constant(n: int) -> float:
     """``(n!)^4 / ((2n + 1) ((2n)!)^3)``, the Gauss-Legendre error constant on [0, 1], rounded up."""
-    return float(Fraction(math.factorial(n) ** 4,
-                          (2 * n + 1) * math.factorial(2 * n) ** 3)) * (1 + 1e-12)
+    exact = Fraction(math.factorial(n) ** 4, (2 * n + 1) * math.factorial(2 * n) ** 3)
+    value = float(exact)
+    return value if Fraction(value) >= exact else math.nextafter(value, math.inf)
 
 
 _GAUSS = _gauss_constant(NODES[True])
@@ -75,12 +78,19 @@ def f2(beta, m):
 
 
 def _derivative_bound(order: int, real: tuple, imag: float) -> float:
-    """Bound of ``|f^(order)|`` on points with real parts in ``real`` and ``|Im| <= imag``."""
+    """Bound of ``|f^(order)|`` on points with real parts in ``real`` and ``|Im| <= imag``.
+
+    Cauchy's estimate on the disc of radius ``rho = 0.9 margin`` (``margin`` the distance of
+    ``real`` to ``{0, pi}``), evaluated in ball arithmetic and rounded up.
+    """
     margin = min(real[0], math.pi - real[1])
     if not margin > 0.0:
         return math.inf
-    rho = 0.9 * margin
-    return (math.factorial(order) * math.cosh(imag + rho) ** 1.5 / rho ** order) * (1 + 1e-12)
+    arb = balls().arb
+    rho = arb(0.9 * margin)
+    c = (arb(imag) + rho).cosh()
+    bound = arb(math.factorial(order)) * c * c.sqrt() / rho ** order
+    return math.nextafter(float(bound.upper()), math.inf) if bound.is_finite() else math.inf
 
 
 def _remainder_bound(weighted: bool, panels: int):
@@ -105,8 +115,10 @@ def _remainder_bound(weighted: bool, panels: int):
         first = _derivative_bound(n2 + 1, real, 2.0 * widen)
         if weighted:
             second = _derivative_bound(n2 + 2, real, 2.0 * widen)
-            return _GAUSS * (size ** n2 * second + n2 / panels * size ** (n2 - 1) * first)
-        return _GAUSS * size ** n2 * first
+            value = _GAUSS * (size ** n2 * second + n2 / panels * size ** (n2 - 1) * first)
+        else:
+            value = _GAUSS * size ** n2 * first
+        return value * (1.0 + 1e-12)  # a few float roundings of positive terms
 
     return bound
 

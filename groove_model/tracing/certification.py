@@ -62,6 +62,34 @@ def _not_covered(curve: BoundaryCurve, system, gamma_min: float) -> tuple:
     return tuple(out)
 
 
+def _rows_on_curve(curve: BoundaryCurve, certificate: Certificate, system, first: int,
+                   tolerance: float) -> str:
+    """Why a row the boundary reports is not proven on the curve (empty if every one is).
+
+    The tracer moves a few rows after tracing (onto the domain's edges, the junction of
+    ``dr_limit`` to where ``dr_no_roll`` meets it, the last row onto the corner). A row is on
+    the curve to within ``tolerance`` (max-norm, chart) if it is that close to its engine
+    point (itself within the certificate's ``node_distance``) or to the box of a special
+    point proven at that row.
+    """
+    engine = curve.engine[0]
+    boxes: dict = {}
+    for p in certificate.special_points:
+        boxes.setdefault(p.index + first, []).append(p)
+    for i, (row, x) in enumerate(zip(curve.engine_rows, curve.x)):
+        y = system.from_x(x)
+        scale = 1.0 + float(np.max(np.abs(y)))
+        moved = float(np.max(np.abs(y - engine.x[row])))
+        if moved + certificate.node_distance <= tolerance * scale:
+            continue
+        near = [float(np.max(np.abs(y - p.centre))) + p.radius for p in boxes.get(row, ())]
+        if near and min(near) <= tolerance * scale:
+            continue
+        return (f"row {i} of {curve.name} is {moved:.3g} from the traced point it replaces and "
+                f"not within {tolerance * scale:.3g} of a proven special point")
+    return ""
+
+
 def certify_boundaries(curves: dict, traced: dict, gamma_min: float,
                        options: CertifyOptions | None = None) -> dict:
     """Each traced boundary with its :class:`~continuation.Certificate`.
@@ -84,10 +112,13 @@ def certify_boundaries(curves: dict, traced: dict, gamma_min: float,
         certificate = certify(_rows(engine, first, last), system, certified_events(tagged),
                               options=options)
         for name in names:
-            extra = _not_covered(curves[name], system, gamma_min)
-            out[name] = dataclasses.replace(
-                curves[name], certificate=dataclasses.replace(
-                    certificate, excluded=certificate.excluded + extra))
+            cert = dataclasses.replace(certificate, excluded=certificate.excluded
+                                       + _not_covered(curves[name], system, gamma_min))
+            problem = _rows_on_curve(curves[name], cert, system, first, options.node_tolerance)
+            if cert.proven and problem:
+                cert = dataclasses.replace(cert, proven=False, check=Check.POINT,
+                                           message=f"not proven: {Check.POINT}: {problem}")
+            out[name] = dataclasses.replace(curves[name], certificate=cert)
     for name, curve in curves.items():
         if name not in out or out[name].certificate is None:
             reason = "the trace failed" if not curve.ok else "fewer than two points"
