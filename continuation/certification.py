@@ -37,7 +37,7 @@ from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPo
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import FLOATS, balls
 from .result import Curve, SpecialKind
-from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, runs
+from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
 
 __all__ = ["Certificate", "CertifyOptions", "Check", "Exclusion", "ProvenPoint", "certify"]
 
@@ -79,10 +79,12 @@ class _Run:
     def _tube(self, frame: Frame, first: bool, last: bool):
         """Proven pieces covering the segment and its extensions, or a message.
 
-        Tubes reach beyond the segment's ends by a fraction of its length, and at least by
-        what a point's box may be off (the boxes of its points must lie in it); the first
-        and the last reach as far as a special point's box may be from the curve's end (a
-        terminal event's zero a little beyond the last point).
+        Tubes reach beyond the segment's ends by a fraction of its length (so that
+        consecutive tubes overlap), and at least by what a point's box may be off (the boxes
+        of its points must lie in it). Before the first point only by the latter: a curve
+        starts on its seed's zeros, and a tube reaching further back could hold another zero
+        of a function that leaves the seed nearly tangentially. Beyond the last point as far
+        as a special point's box may be from it (a terminal event's zero a little beyond).
 
         A piece whose test fails is cut in parts, as many as its contraction suggests
         (``|I - A H' N|`` grows about linearly with the piece's length), at least two.
@@ -95,7 +97,7 @@ class _Run:
         ext = max(self.options.extension * L, 4.0 * floor)
         end = max(ext, 2.0 * self.options.special_tolerance * scale)
         widest = max(self.options.max_radius * L, 8.0 * floor)
-        pending, pieces = [(-end if first else -ext, L + (end if last else ext), 0)], []
+        pending, pieces = [(-4.0 * floor if first else -ext, L + (end if last else ext), 0)], []
         orientation = 0
         while pending:
             a, b, level = pending.pop()
@@ -210,10 +212,11 @@ class _Run:
         stretch = []
         if i > 0:
             before = self._leaves(function, i - 1, cache)
-            stretch.append((i - 1, runs(before)[-1] if before else None))
+            length = self.segments[i - 1].frame.length
+            stretch.append((i - 1, run_at(before, length) if before else None))
         if i < m:
             after = self._leaves(function, i, cache)
-            stretch.append((i, runs(after)[0] if after else None))
+            stretch.append((i, run_at(after, 0.0) if after else None))
         signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
         if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:
             return self._fail(function, f"the zero at point {i} is not proven to be the only one "
@@ -308,7 +311,7 @@ class _Run:
             if signs[i] and self._vanishes_at_end(function, i):
                 signs[i] = 0
         at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
-        cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}
+        cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
             if failure is not None:
@@ -318,7 +321,8 @@ class _Run:
             if s in excluded:
                 continue
             leaves = self._leaves(function, s, cache)
-            crossings = None if leaves is None else count_zeros(leaves, signs[s], signs[s + 1])
+            crossings = None if leaves is None else count_zeros(
+                leaves, signs[s], signs[s + 1], self.segments[s].frame.length)
             if crossings is None:
                 return self._fail(function, f"its zeros on segment {s} are not decided",
                                   segment=s)

@@ -392,13 +392,41 @@ def solve_slice(problem, frame, B, piece: Piece, tau: float, tolerance: float):
     return Slice(frame.tube_box(t, K), max(radii))
 
 
+def _square_test(F, DF, A, centre, B, tolerance: float, floor: float):
+    """Krawczyk's test for ``F = 0`` in boxes around ``centre`` (balls): a radius or a message."""
+    n = len(centre)
+    FA = _matvec(A, F(centre, B))
+    size = max(_upper(f) for f in FA)
+    if not math.isfinite(size):
+        return "its residual is not finite"
+    radius = 2.0 * size + floor
+    for _ in range(4):
+        if not radius <= tolerance:
+            return f"its box would need a radius of {radius:.3g}, more than {tolerance:.3g}"
+        box = [c + B.error(radius) for c in centre]
+        C = B.matmul(A, DF(box, B))
+        rows = [sum(_upper((1.0 if i == j else 0.0) - C[i][j]) for j in range(n))
+                for i in range(n)]
+        K = [-FA[i] + B.error(rows[i] * radius * (1.0 + 1e-12)) for i in range(n)]
+        if _inside(K, [radius] * n, B):
+            return radius
+        if not max(rows) < 1.0:
+            return f"Krawczyk's operator does not contract (|I - A DF| = {max(rows):.3g})"
+        radius = max(2.0 * radius, 1.5 * max(_upper(k) for k in K))
+    return "Krawczyk's test fails at every radius tried"
+
+
 def square_box(F, DF, x_hat, B, tolerance: float):
     """Krawczyk's test for a square system ``F(x) = 0`` around ``x_hat``.
 
     ``F(x, numbers)`` and ``DF(box, numbers)`` (a list of rows) are evaluated in balls;
     ``A`` is the inverse of ``DF`` at ``x_hat`` in floats, and the box is centred at the
-    Newton point ``x_hat - A F(x_hat)``. Returns ``(centre, radius)`` (floats, the box is
-    ``|x - centre|_inf <= radius``) or a message.
+    Newton point ``x_hat - A F(x_hat)``. Where the system is so ill-conditioned that the
+    residual's rounding at that point needs a box too wide for ``DF`` to be nearly constant
+    on it (a crossing that is nearly tangent), the test is repeated with the centre refined by
+    Newton's method and every ball evaluated at 128 bits. Returns ``(centre, radius)`` (the box
+    is ``|x - centre|_inf <= radius``, floats, the radius covering the centre's rounding) or
+    a message.
     """
     x_hat = [float(v) for v in x_hat]
     A = inverse([[float(v) for v in row] for row in DF(x_hat, FLOATS)])
@@ -406,23 +434,18 @@ def square_box(F, DF, x_hat, B, tolerance: float):
         return "its Jacobian is singular or not finite"
     step = _matvec(A, [float(v) for v in F(x_hat, FLOATS)])
     centre = [x - s for x, s in zip(x_hat, step)]
-    FA = _matvec(A, F([B.number(c) for c in centre], B))
-    size = max(_upper(f) for f in FA)
-    if not math.isfinite(size):
-        return "its residual is not finite"
-    radius = 2.0 * size + 1e-15 * max(1.0, max(abs(c) for c in centre))
-    n = len(centre)
-    for _ in range(4):
-        if not radius <= tolerance:
-            return f"its box would need a radius of {radius:.3g}, more than {tolerance:.3g}"
-        box = [B.arb(c, radius) for c in centre]
-        C = B.matmul(A, DF(box, B))
-        rows = [sum(_upper((1.0 if i == j else 0.0) - C[i][j]) for j in range(n))
-                for i in range(n)]
-        K = [-FA[i] + B.error(rows[i] * radius * (1.0 + 1e-12)) for i in range(n)]
-        if _inside(K, [radius] * n, B):
-            return centre, radius
-        if not max(rows) < 1.0:
-            return f"Krawczyk's operator does not contract (|I - A DF| = {max(rows):.3g})"
-        radius = max(2.0 * radius, 1.5 * max(_upper(k) for k in K))
-    return "Krawczyk's test fails at every radius tried"
+    scale = max(1.0, max(abs(c) for c in centre))
+    found = _square_test(F, DF, A, [B.number(c) for c in centre], B, tolerance, 1e-15 * scale)
+    if not isinstance(found, str):
+        return centre, found
+    with B.precision(128):
+        balls_ = [B.number(c) for c in centre]
+        for _ in range(4):  # Newton's method (chord steps) at 128 bits
+            step = _matvec(A, F(balls_, B))
+            balls_ = [B.number(c - d).mid() for c, d in zip(balls_, step)]
+        radius = _square_test(F, DF, A, balls_, B, tolerance, 1e-30 * scale)
+        if isinstance(radius, str):
+            return found
+        rounded = [float(c) for c in balls_]
+        slack = max(_upper(c - r) for c, r in zip(balls_, rounded))
+    return rounded, radius + slack

@@ -26,6 +26,7 @@ the two, by forward-mode differentiation; Griewank & Walther, *Evaluating Deriva
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
 
@@ -118,8 +119,28 @@ class _Balls:
     def __init__(self, flint) -> None:
         self.arb = flint.arb
         self._arb_mat = flint.arb_mat
-        self.pi = flint.arb.pi()
+        self._ctx = flint.ctx
+        self._pi: dict = {}
         self._gauss: dict = {}
+
+    @property
+    def pi(self):
+        """pi as a ball at the current precision."""
+        prec = self._ctx.prec
+        if prec not in self._pi:
+            self._pi[prec] = self.arb.pi()
+        return self._pi[prec]
+
+    @contextlib.contextmanager
+    def precision(self, bits: int):
+        """Evaluate at ``bits`` of precision inside the ``with`` block (python-flint's context)."""
+        ctx = self._ctx
+        saved = ctx.prec
+        ctx.prec = max(bits, saved)
+        try:
+            yield self
+        finally:
+            ctx.prec = saved
 
     def matmul(self, X, Y) -> list:
         """The product of two matrices (nested lists of floats or balls), as nested lists."""
@@ -164,11 +185,12 @@ class _Balls:
         return s0, s1, -s0 - 2.0 * s1 / u
 
     def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
-        if (n, panels) not in self._gauss:
+        key = (n, panels, self._ctx.prec)
+        if key not in self._gauss:
             roots = [self.arb.legendre_p_root(n, i, weight=True) for i in range(n)]
-            self._gauss[n, panels] = tuple(((p + 0.5 * (1.0 + t)) / panels, 0.5 * w / panels)
-                                           for p in range(panels) for t, w in roots)
-        return self._gauss[n, panels]
+            self._gauss[key] = tuple(((p + 0.5 * (1.0 + t)) / panels, 0.5 * w / panels)
+                                     for p in range(panels) for t, w in roots)
+        return self._gauss[key]
 
     def bounds(self, x) -> tuple[float, float]:
         """``(lo, hi)``: floats with ``lo <= x <= hi`` for every value of the ball ``x``."""
@@ -289,7 +311,10 @@ class _Jets:
         self.base = base
         self.name = f"jets over {base.name}"
         self.rigorous = base.rigorous
-        self.pi = base.pi
+
+    @property
+    def pi(self):
+        return self.base.pi
 
     def value(self, x):
         return x.v if type(x) is Jet else x

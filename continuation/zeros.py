@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, square_box
 from .numbers import FLOATS, Jet, jets
 
-__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero", "runs"]
+__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero", "run_at", "runs"]
 
 
 @dataclass(frozen=True)
@@ -168,16 +168,22 @@ def classify(function, segment, problem, B, orientation: int, depth: int = 40):
     return sorted(found, key=lambda leaf: leaf.lo)
 
 
-def count_zeros(leaves, left: int, right: int):
-    """Zeros of ``phi`` on a segment between its end points, whose signs are ``left`` and
-    ``right``; 0 for an end where ``phi`` vanishes (a zero proven there, in the monotone run
-    next to it, which is not counted here).
+def run_at(leaves, tau: float):
+    """The run (merged leaves) holding ``tau``, or ``None``."""
+    return next((run for run in runs(leaves) if run.lo <= tau <= run.hi), None)
+
+
+def count_zeros(leaves, left: int, right: int, length: float):
+    """Zeros of ``phi`` on a segment between its end points (``tau = 0`` and ``length``), whose
+    signs are ``left`` and ``right``; 0 for an end where ``phi`` vanishes (a zero proven there,
+    in the monotone run holding that end, which is not counted here). Runs only in the
+    tube's extensions beyond the ends belong to the neighbouring segments and are left out.
 
     Returns a list of crossing directions (``+1`` increasing along the curve), or ``None``
     when the count is open (a turning point between two monotone runs, or a run
     inconsistent with the signs).
     """
-    stretch = runs(leaves)
+    stretch = [run for run in runs(leaves) if run.hi > 0.0 and run.lo < length]
     if not stretch:
         return None
     if left == 0 and right == 0 and len(stretch) == 1:

@@ -253,6 +253,15 @@ class BoundarySystem:
     validity : dict of Condition to callable
         ``condition -> f(x)`` at chart coordinates, ``f >= 0`` where the boundary is physical
         (its regime valid).
+    certified_validity : dict of Condition to callable
+        The same conditions in the form certification uses: the validity function itself,
+        except ``T/N_R <= k`` on ``dr_limit``, which on the limit curve has the sign of
+        ``k cos(gamma) - c sin(gamma)``: with ``c upsilon = k s_L - c cos beta_L`` there,
+        ``k s_R - c (cos beta_R - upsilon) = k (s_L + s_R) - c (cos beta_L + cos beta_R)
+        = 2 cos((beta_L - beta_R)/2) (k cos gamma - c sin gamma)`` (``beta_L + beta_R =
+        pi - 2 gamma``), so ``T/N_R <= k`` exactly where ``gamma <= arctan(k/c)``; for small
+        ``k`` the validity function is of order ``k^2`` along the curve and its enclosures
+        would not separate it from zero.
     """
 
     name: str
@@ -262,6 +271,7 @@ class BoundarySystem:
     conditioned: bool = False
     regime: str = field(init=False)
     validity: dict = field(init=False, repr=False, compare=False)
+    certified_validity: dict = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.name not in BOUNDARY_NAMES:
@@ -292,14 +302,22 @@ class BoundarySystem:
             beta_L = y[2] * y[2] if sqrt_chart else y[2]
             return (c * (numbers.cos(beta_L) + y[3]) - k * numbers.sin(beta_L)) / r
 
+        def limit_margin(y, numbers=FLOATS):
+            gamma = scale * y[0]
+            return (k * numbers.cos(gamma) - c * numbers.sin(gamma)) / r
+
         checks: dict[Condition, Callable] = {
             "dr_limit": {Condition.T_OVER_N_R: tn_right},
             "rs_limit": {},
             "dr_no_roll": {Condition.T_OVER_N_L: tn_left, Condition.T_OVER_N_R: tn_right},
             "rs_no_roll": {Condition.SLIP_LEFT: slip_left},
         }[self.name]
+        certified = dict(checks)
+        if self.name == "dr_limit":
+            certified[Condition.T_OVER_N_R] = limit_margin
         object.__setattr__(self, "regime", REGIME_OF[self.name])
         object.__setattr__(self, "validity", checks)
+        object.__setattr__(self, "certified_validity", certified)
 
     def _unscaled(self, y) -> list:
         """Chart coordinates as Python numbers, ``gamma`` and ``delta`` in radians."""

@@ -105,7 +105,10 @@ def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
 
 
 def validity_events(system: BoundarySystem) -> list[Tagged]:
-    return [Tagged(Event(f"validity {condition.value}", f), Role.VALIDITY, condition)
+    """An event per validity condition of the boundary's regime (certified in the form of
+    :attr:`BoundarySystem.certified_validity`)."""
+    return [Tagged(Event(f"validity {condition.value}", f), Role.VALIDITY, condition,
+                   certified=system.certified_validity[condition])
             for condition, f in system.validity.items()]
 
 
