@@ -115,9 +115,10 @@ class Failure:
 
 @dataclass(frozen=True)
 class Frame:
-    """The coordinates of one segment's tube: a graph over the chord's largest coordinate.
+    """The coordinates of one segment's tube: a graph over one coordinate.
 
-    With ``p`` the coordinate in which the chord ``x_b - x_a = L v`` moves most, a point is
+    With ``p`` the coordinate in which the curve moves most steadily (the largest of the
+    chord's and both tangents' components, all of one sign), a point is
     ``x = x_a + tau v + sum_k (c_k(tau) + y_k) e_{axes[k]}`` (``axes`` the other coordinates):
     the slice ``tau`` is the hyperplane ``x_p = x_a,p + tau v_p`` and ``y`` are offsets along
     the coordinate axes, so a tube may be thinner in one coordinate than in another (a
@@ -146,7 +147,9 @@ class Frame:
         if length <= _SHORT * (1.0 + max(abs(xj) for xj in x_a)):
             return cls._short(x_a, t_a, t_b, d)
         v = [di / length for di in d]
-        p = max(range(len(v)), key=lambda j: abs(v[j]))
+        # the coordinate the curve moves in most steadily: same sign at both ends as the chord
+        steady = [j for j in range(len(v)) if v[j] * t_a[j] > 0.0 and v[j] * t_b[j] > 0.0]
+        p = max(steady or range(len(v)), key=lambda j: min(abs(t_a[j]), abs(t_b[j]), abs(v[j])))
         along_a, along_b = t_a[p] / v[p], t_b[p] / v[p]
         if not (along_a > 0.0 and along_b > 0.0):
             return (f"a tangent turns against the chord in x[{p}] (ratios {along_a:.3g}, "
