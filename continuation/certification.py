@@ -6,9 +6,9 @@ written over a numbers namespace (:mod:`continuation.numbers`: ``residual(x, num
 ball arithmetic (every rounding outwards):
 
 1. *Tubes* (:mod:`continuation.krawczyk`): around each segment between consecutive points a
-   tube of radius ``r_i`` (reaching ``extension`` of its length beyond both ends) in which the
-   zeros of ``H`` are exactly one smooth arc, a graph over the chord (parametrised Krawczyk
-   test; van den Berg, Lessard & Mischaikow, Math. Comp. 79 (2010)).
+   tube (a radius per offset coordinate, reaching ``extension`` of its length beyond both
+   ends) in which the zeros of ``H`` are exactly one smooth arc, a graph over one coordinate
+   (parametrised Krawczyk test; van den Berg, Lessard & Mischaikow, Math. Comp. 79 (2010)).
 2. *Points*: every point of the curve is within ``node_distance`` of a zero of ``H`` (the
    zero of its slice), and that zero lies in the tubes on both sides of the point, so the arcs
    of consecutive segments overlap: one smooth branch from the first point to the last.
@@ -21,7 +21,8 @@ ball arithmetic (every rounding outwards):
 
 Anything else fails with the first segment or point where a test failed and why; a curve is
 never reported proven on evidence that is only numerical. Branch points (where the solution
-set is not one smooth arc) are not certified.
+set is not one smooth arc) are not certified, and no neighbourhood of a singular end is cut
+out automatically: a curve ending at a singular point fails there, with the segment named.
 """
 
 from __future__ import annotations
