@@ -4,7 +4,8 @@ Problems and tools (``benchmarks/README.md``): the engine on ``cubic`` and ``cir
 the Python peers ``bice`` and ``pycont-lite`` (``pip install '.[bench]'``; a peer that is
 missing or fails gives a record with ``ok: false`` and the reason), and the tracer on
 ``groove_k1``, ``groove_k10`` and ``groove_sweep100`` against ``fsolve_natural`` and
-``grid_contour``. Wall times are medians over repeats, in-process, after a warm-up run, imports
+``grid_contour``, and the cost of certifying ``k = 1`` and ``k = 10`` (``benchmarks/certify.py``,
+needs python-flint). Wall times are medians over repeats, in-process, after a warm-up run, imports
 excluded. Speed is measured here, never asserted in tests.
 """
 
@@ -23,6 +24,7 @@ if __package__ in (None, ""):
     # run as a script: make the repository root importable
     sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from benchmarks.certify import run_certify
 from benchmarks.groove import run_groove
 from benchmarks.records import Record, markdown_table
 from benchmarks.standard import run_standard
@@ -43,10 +45,12 @@ class Config:
     grid_sizes: tuple[int, ...] = (64, 128, 256, 512, 1024, 2048)
     sweep_grid_sizes: tuple[int, ...] = (64, 128)
     fsolve_points: int = 100
+    certify_problems: tuple[str, ...] = ()
 
 
-FULL = Config(repeats=15)
-QUICK = Config(repeats=3, grid_sizes=(64, 128, 256, 512), sweep_grid_sizes=(32, 64))
+FULL = Config(repeats=15, certify_problems=("groove_k1", "groove_k10"))
+QUICK = Config(repeats=3, grid_sizes=(64, 128, 256, 512), sweep_grid_sizes=(32, 64),
+               certify_problems=("groove_k1", "groove_k10"))
 
 
 def build_records(config: Config) -> list[Record]:
@@ -56,6 +60,7 @@ def build_records(config: Config) -> list[Record]:
                           sweep=config.sweep, grid_sizes=config.grid_sizes,
                           sweep_grid_sizes=config.sweep_grid_sizes,
                           fsolve_points=config.fsolve_points)
+    records += run_certify(config.certify_problems, config.repeats)
     return records
 
 

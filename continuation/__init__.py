@@ -4,7 +4,8 @@ The engine follows a solution curve through folds in any coordinate, locates
 events, folds and simple branch points exactly, switches branches and closes
 loops, and follows folds and event points in a second parameter (:mod:`.codim2`)
 (E. L. Allgower and K. Georg, *Introduction to Numerical Continuation Methods*, SIAM 2003;
-H. B. Keller, 1977). It imports numpy and scipy only.
+H. B. Keller, 1977). It imports numpy and scipy only; :func:`certify` proves a traced curve
+in ball arithmetic with python-flint (optional, imported when used).
 
 Example
 -------
@@ -18,6 +19,7 @@ Example
 """
 
 from .branching import branch_tangents, locate_branch_point, switch_branch
+from .certification import Certificate, CertifyOptions, certify
 from .codim2 import Codim2Curve, Codim2Kind, Codim2Point, follow_event, follow_fold
 from .errors import CallbackError, CallbackShapeError, ContinuationError
 from .events import Event, box_events
@@ -29,6 +31,8 @@ from .tracker import trace
 
 __all__ = [
     "CallbackError",
+    "Certificate",
+    "CertifyOptions",
     "CallbackShapeError",
     "Codim2Curve",
     "Codim2Kind",
@@ -44,6 +48,7 @@ __all__ = [
     "Status",
     "box_events",
     "branch_tangents",
+    "certify",
     "check_jacobian",
     "finite_difference_jacobian",
     "follow_event",

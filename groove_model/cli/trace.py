@@ -8,6 +8,7 @@ import sys
 from .common import (
     EXIT_FAILED,
     EXIT_OK,
+    UsageError,
     add_command,
     add_compliance_options,
     add_friction,
@@ -32,7 +33,10 @@ and FIGURE.svg (default boundaries_k1_k10 for -k 1 10; for many k a short name w
 count and a hash, e.g. boundaries_200k_0.01-1000_1a2b3c4d). If a boundary of some k fails,
 that k is reported and skipped, the other k are written, no overlay is drawn, and the exit
 code is 1. Every file is written whole or not at all. With another compliance than the
-paper's the names end in _nu{NU} (--poisson) or _c{RATIO}.
+paper's the names end in _nu{NU} (--poisson) or _c{RATIO}. With --certify each boundary is
+proven in ball arithmetic (docs/certification.md): a line per boundary says proven or not
+proven and why, the CSV column certified says True or False, and the exit code is 1 if any
+boundary is not proven (its files are written all the same).
 """
 
 #: Longest default overlay name (without suffix) built from the list of k.
@@ -57,6 +61,9 @@ def add_parser(subparsers):
                    help="keep the parts of each boundary where its regime is not valid")
     p.add_argument("--deg", action="store_true", help="overlay axes in degrees")
     p.add_argument("--no-figure", action="store_true", help="write the CSVs only")
+    p.add_argument("--certify", action="store_true",
+                   help="prove every boundary in ball arithmetic (needs python-flint: pip "
+                        "install 'groove-continuation[certify]')")
     add_compliance_options(p)
     p.set_defaults(run=run)
     return p
@@ -81,7 +88,8 @@ def overlay_name(ks) -> str:
 
 def run(args) -> int:
     """Trace every ``k``; write the CSVs of each ``k`` whose boundaries all succeeded, and the
-    overlay if every ``k`` did; 1 if any boundary failed, else 0."""
+    overlay if every ``k`` did; 1 if any boundary failed (with ``--certify``: or is not
+    proven, its files written all the same), else 0."""
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.export import write_boundary_set
@@ -90,13 +98,21 @@ def run(args) -> int:
     from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
+    if args.certify:
+        # Imported here: only --certify needs to know whether python-flint is installed.
+        from continuation.numbers import require_flint
+
+        try:
+            require_flint()
+        except ImportError as exc:
+            raise UsageError(str(exc)) from None
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
         result = trace_boundaries(Parameters(k, compliance),
-                                  keep_unphysical=args.keep_unphysical)
+                                  keep_unphysical=args.keep_unphysical, certify=args.certify)
         if not result.ok:
             failed.append(k)
             for failure in result.failures:
@@ -111,6 +127,10 @@ def run(args) -> int:
               f"|rs_limit - dr_limit| <= {result.limit_distance:.1e}")
         for note in result.notes:
             print(f"  note: {note}")
+        for curve in result.curves.values():
+            if curve.certificate is not None:
+                print(f"  {curve.name}: {certificate_line(curve.certificate)}",
+                      file=sys.stdout if curve.certified else sys.stderr)
     if failed:
         print(f"groove trace: no overlay: the boundaries of k = "
               f"{', '.join(map(k_text, failed))} failed (see above)", file=sys.stderr)
@@ -119,4 +139,22 @@ def run(args) -> int:
         name = args.figure or overlay_name([b.k for b in sets]) + suffix
         for path in save_overlay(sets, out / name, degrees=args.deg):
             print(f"figure: {path}")
+    unproven = [c.name for b in sets for c in b.curves.values() if c.certified is False]
+    if unproven:
+        print(f"groove trace: error: not proven: {', '.join(unproven)} (see above)",
+              file=sys.stderr)
+        return EXIT_FAILED
     return EXIT_OK
+
+
+def certificate_line(certificate) -> str:
+    """One line for a boundary's certificate: proven, what is not covered, or what failed."""
+    if not certificate.proven:
+        return certificate.message
+    excluded = "; ".join(f"not covered: {e.note}" if e.radius > 0 else f"excluded: {e.note}"
+                         for e in certificate.excluded)
+    return (f"proven: {certificate.segments} segments in tubes of radius <= "
+            f"{certificate.max_radius:.1e}, points within {certificate.node_distance:.0e}, "
+            f"{len(certificate.special_points)} special point(s) in boxes of radius <= "
+            f"{max((p.radius for p in certificate.special_points), default=0.0):.0e}"
+            + (f"; {excluded}" if excluded else ""))

@@ -60,13 +60,20 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     ValueError
         If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name, or
         a value that is not a number (the message names the column, value and row).
+
+    Notes
+    -----
+    ``certified`` is True (proven), False (certification failed) or empty (not asked for,
+    or a file written before the column existed), read as True, False or None.
     """
     path = Path(path)
     try:
         frame = pd.read_csv(path, keep_default_na=False, na_values={"": []},
-                            dtype={"point": str, "boundary": str})
+                            dtype={"point": str, "boundary": str, "certified": str})
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: not a boundaries CSV ({exc})") from None
+    if "certified" not in frame.columns:
+        frame["certified"] = ""  # written before certification existed: not certified
     missing = [c for c in CSV_COLUMNS if c not in frame.columns]
     if missing:
         raise ValueError(f"{path}: not a boundaries CSV; missing columns {', '.join(missing)} "
@@ -78,7 +85,7 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         raise ValueError(f"{path}: unknown boundary {unknown[0]!r}; allowed "
                          f"{', '.join(BOUNDARY_NAMES)}")
     for column in CSV_COLUMNS:
-        if column in ("boundary", "point", "physical"):
+        if column in ("boundary", "point", "physical", "certified"):
             continue
         values = pd.to_numeric(frame[column], errors="coerce")
         finite_required = column not in ("T_over_N_L", "T_over_N_R")
@@ -101,6 +108,10 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     if not physical.isin(["true", "false"]).all():
         raise ValueError(f"{path}: column physical must be True or False")
     frame["physical"] = physical.eq("true")
+    certified = frame["certified"].fillna("").astype(str).str.lower()
+    if not certified.isin(["true", "false", ""]).all():
+        raise ValueError(f"{path}: column certified must be True, False or empty")
+    frame["certified"] = certified.map({"true": True, "false": False, "": None})
     return frame
 
 

@@ -7,16 +7,16 @@ Each boundary is the zero set of three equations in ``x = (gamma, delta, beta_L,
 the compliance ratio, the equations are written multiplied out, with no division by
 ``sin theta_R`` or ``sin beta`` (the paper's Eqs. tran1 and tran2 are these divided through):
 
-=================  ==================================================  ==========================
-equation           expression                                          meaning
-=================  ==================================================  ==========================
-torque (DR)        ``q_L A - q_R B``                                   ``T_L = T_R``
-horizontal (DR)    ``n_L sin theta_L - n_R sin theta_R + c q_L A D``   paper Eq. 2
-right rolls (RS)   ``c q_R B - k n_L``                                 ``T = k N_L``
-horizontal (RS)    ``n_L (sin theta_L + k D) - n_R sin theta_R``       Eq. 2, ``T = k N_L``
-limit              ``c A - k s_L``                                     ``T/N_L = k``, ``d_L = 0``
-no roll            ``upsilon``                                         ``upsilon = 0``
-=================  ==================================================  ==========================
+=================  ===========================================================  ============
+equation           expression                                                   meaning
+=================  ===========================================================  ============
+torque (DR)        ``q_L A - q_R B``                                            ``T_L = T_R``
+horizontal (DR)    ``n_L sin theta_L - n_R sin theta_R + c q_L A D``            paper Eq. 2
+right rolls (RS)   ``c q_R B - k n_L``                                          ``T = k N_L``
+horizontal (RS)    ``n_L (sin theta_L + k D) - n_R sin theta_R``                Eq. 2, ``T = k N_L``
+limit              ``c A - k s_L``                                              ``T/N_L = k``, ``d_L = 0``
+no roll            ``upsilon``                                                  ``upsilon = 0``
+=================  ===========================================================  ============
 
 ``dr_limit`` = (torque, horizontal DR, limit); ``rs_limit`` = (right rolls, horizontal RS, limit);
 ``dr_no_roll`` = (torque, horizontal DR, no roll); ``rs_no_roll`` = (right rolls, horizontal RS,
@@ -43,11 +43,14 @@ from __future__ import annotations
 
 import enum
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Callable
 
 import numpy as np
 
+from continuation.numbers import FLOATS
+
+from .deflation import deflated_torque
 from .parameters import Parameters
 
 __all__ = [
@@ -78,117 +81,54 @@ class Condition(str, enum.Enum):
         return self.value
 
 
-def _left_contact(var: float, chart: str):
-    """``beta_L``, ``q_L = sqrt(sin beta_L)`` and their derivatives with respect to the chart
-    variable.
+def _left_contact(var, chart: str, m):
+    """``beta_L``, ``q_L = sqrt(sin beta_L)`` and their derivatives with respect to the chart variable.
 
     In the ``"beta_L"`` chart the variable is ``beta_L`` itself and ``d q_L / d beta_L =
     cos beta_L / (2 q_L)`` is unbounded as ``beta_L -> 0``. In the ``"sqrt_beta_L"`` chart the
     variable is ``w`` with ``beta_L = w^2``, and ``q_L = w sqrt(sin(w^2) / w^2)`` is analytic
     (odd in ``w``), so the ends ``beta_L = 0`` become regular points where ``w`` crosses 0.
+    Outside ``0 <= beta_L <= pi`` the state is not a contact: ``m.sqrt`` gives NaN (a
+    non-finite ball), which the engine rejects.
     """
     if chart == "beta_L":
-        beta_L = var
-        s_L = math.sin(beta_L)
-        # Outside 0 <= beta_L <= pi the state is not a contact: NaN, which the engine rejects.
-        q_L = math.sqrt(s_L) if s_L >= 0.0 else math.nan
-        dq_L = math.cos(beta_L) / (2.0 * q_L) if q_L != 0.0 else math.inf
-        return beta_L, q_L, 1.0, dq_L
+        q_L = m.sqrt(m.sin(var))
+        dq_L = m.cos(var) / (2.0 * q_L) if q_L != 0.0 else math.inf
+        return var, q_L, 1.0, dq_L
     w2 = var * var
-    # sin(w^2) / w^2 = 1 - w^4/6 + ..., evaluated without cancellation near w = 0.
-    ratio = math.sin(w2) / w2 if w2 > 1e-4 else 1.0 - w2 * w2 / 6.0
-    r = math.sqrt(ratio) if ratio >= 0.0 else math.nan
-    return w2, var * r, 2.0 * var, math.cos(w2) / r
+    r = m.sqrt(m.sinc(w2))
+    return w2, var * r, 2.0 * var, m.cos(w2) / r
 
 
-#: nodes and weights of 6-point Gauss-Legendre quadrature on [0, 1]
-_GAUSS = tuple(zip((0.5 * (1.0 + t) for t in np.polynomial.legendre.leggauss(6)[0]),
-                   (0.5 * w for w in np.polynomial.legendre.leggauss(6)[1]), strict=True))
-
-#: below this |beta_L - beta_R| the divided difference is a quadrature of f'
-_DIVIDED_SWITCH = 0.05
-
-
-def _f1(beta: float) -> float:
-    """``f'(beta)`` for ``f = sqrt(sin beta) cos beta``: ``cos^2/(2 sqrt sin) - sin^(3/2)``."""
-    s, c = math.sin(beta), math.cos(beta)
-    q = math.sqrt(s)
-    return c * c / (2.0 * q) - s * q
-
-
-def _f2(beta: float) -> float:
-    """``f''(beta) = -(5/2) cos(beta) q - cos(beta)^3 / (4 q^3)``, ``q = sqrt(sin beta)``."""
-    s, c = math.sin(beta), math.cos(beta)
-    q = math.sqrt(s)
-    return -2.5 * c * q - c * c * c / (4.0 * q * s)
-
-
-def _deflated_torque(gamma, beta_L, q_L, b1, dq_L, jacobian):
-    """The no-roll torque divided by ``beta_L - beta_R``, and its row (dr_no_roll, deflated).
-
-    With ``upsilon = 0`` the torque is ``f(beta_L) - f(beta_R)``, ``f = sqrt(sin beta) cos
-    beta``, which vanishes on the whole symmetric family ``beta_L = beta_R`` as well as on
-    ``dr_no_roll``. Its divided difference
-
-    .. math:: g = \\frac{f(\\beta_L) - f(\\beta_R)}{\\beta_L - \\beta_R}
-                = \\int_0^1 f'(\\beta_R + t(\\beta_L - \\beta_R))\\,dt
-
-    vanishes on ``dr_no_roll`` alone, which crosses the family where ``f' = 0`` (the branch
-    point): with ``g`` in place of the torque the branch point is a regular point (deflation,
-    Allgower & Georg sec. 8.3). ``g`` is the quotient where ``|beta_L - beta_R| >= 0.05`` and a
-    6-point Gauss-Legendre quadrature of ``f'`` (error ``O(d^12)``) closer to the family, where
-    the quotient would cancel.
-    """
-    beta_R = _PI - 2.0 * gamma - beta_L
-    d = beta_L - beta_R
-    if abs(d) >= _DIVIDED_SWITCH:
-        s_R, c_R = math.sin(beta_R), math.cos(beta_R)
-        q_R = math.sqrt(s_R) if s_R >= 0.0 else math.nan
-        g = (q_L * math.cos(beta_L) - q_R * c_R) / d
-        if not jacobian:
-            return g, None
-        dF_L = dq_L * math.cos(beta_L) - q_L * math.sin(beta_L) * b1  # d f(beta_L) / d var
-        g_R = (g - _f1(beta_R)) / d                                   # d g / d beta_R
-        g_var = (dF_L - g * b1) / d - g_R * b1
-    else:
-        g = sum(w * _f1(beta_R + t * d) for t, w in _GAUSS)
-        if not jacobian:
-            return g, None
-        second = [(t, w, _f2(beta_R + t * d)) for t, w in _GAUSS]
-        g_L = sum(w * t * f2 for t, w, f2 in second)
-        g_R = sum(w * (1.0 - t) * f2 for t, w, f2 in second)
-        g_var = (g_L - g_R) * b1
-    return g, (-2.0 * g_R, 0.0, g_var, 0.0)
-
-
-def _rows(x, k, c, system, chart="beta_L", jacobian=True, unit=0.0):
+def _rows(x, k, c, system, chart, m, jacobian=True, unit=0.0):
     """Residual (3,) and Jacobian (3, 4) of one boundary system at ``x``; see module table.
 
-    The third coordinate of ``x`` is ``beta_L`` or ``w = sqrt(beta_L)`` (``chart``); its column
-    is assembled from ``d beta_L`` (``b1``) and ``d q_L`` (``dq_L``) by the product rule. With
-    ``jacobian=False`` only the residual is computed (the rows are ``None``). ``unit > 0``
-    selects the conditioned form (:func:`_limit_rows` for the limit curve, the deflated torque
-    :func:`_deflated_torque` for ``dr_no_roll``).
+    ``x`` is a sequence of four numbers of the namespace ``m`` (:mod:`continuation.numbers`);
+    the third is ``beta_L`` or ``w = sqrt(beta_L)`` (``chart``); its column is assembled from
+    ``d beta_L`` (``b1``) and ``d q_L`` (``dq_L``) by the product rule. With ``jacobian=False``
+    only the residual is computed (the rows are ``None``). ``unit > 0`` selects the
+    conditioned form (:func:`_limit_rows` for the limit curve, the deflated torque
+    :func:`~groove_model.model.deflation.deflated_torque` for ``dr_no_roll``).
     """
     if unit > 0.0 and system.endswith("limit"):
-        return _limit_rows(x, k, c, chart, jacobian, unit)
+        return _limit_rows(x, k, c, chart, m, jacobian, unit)
     if unit > 0.0 and system == "dr_no_roll":
-        values, rows = _rows(x, k, c, system, chart, jacobian)
-        beta_L, q_L, b1, dq_L = _left_contact(float(x[2]), chart)
-        values[0], row = _deflated_torque(float(x[0]), beta_L, q_L, b1, dq_L, jacobian)
+        values, rows = _rows(x, k, c, system, chart, m, jacobian)
+        beta_L, q_L, b1, dq_L = _left_contact(x[2], chart, m)
+        values[0], row = deflated_torque(x[0], beta_L, q_L, b1, dq_L, jacobian, m)
         if jacobian:
             rows[0] = row
         return values, rows
-    gamma, delta, upsilon = float(x[0]), float(x[1]), float(x[3])
-    beta_L, q_L, b1, dq_L = _left_contact(float(x[2]), chart)
-    beta_R = _PI - 2.0 * gamma - beta_L
-    s_L, c_L, s_R, c_R = math.sin(beta_L), math.cos(beta_L), math.sin(beta_R), math.cos(beta_R)
-    q_R = math.sqrt(s_R) if s_R >= 0.0 else math.nan
+    gamma, delta, upsilon = x[0], x[1], x[3]
+    beta_L, q_L, b1, dq_L = _left_contact(x[2], chart, m)
+    beta_R = m.pi - 2.0 * gamma - beta_L
+    s_L, c_L, s_R, c_R = m.sin(beta_L), m.cos(beta_L), m.sin(beta_R), m.cos(beta_R)
+    q_R = m.sqrt(s_R)
     n_L, n_R = s_L * q_L, s_R * q_R
     A, B = c_L + upsilon, c_R - upsilon
     theta_L, theta_R = gamma + delta, gamma - delta
-    sin_tL, sin_tR = math.sin(theta_L), math.sin(theta_R)
-    sin_g, sin_d = math.sin(gamma), math.sin(delta)
+    sin_tL, sin_tR = m.sin(theta_L), m.sin(theta_R)
+    sin_g, sin_d = m.sin(gamma), m.sin(delta)
     D = 2.0 * sin_g * sin_d
     dr = system.startswith("dr")
     if dr:
@@ -200,8 +140,8 @@ def _rows(x, k, c, system, chart="beta_L", jacobian=True, unit=0.0):
     if not jacobian:
         return values, None
 
-    cos_tL, cos_tR = math.cos(theta_L), math.cos(theta_R)
-    cos_g, cos_d = math.cos(gamma), math.cos(delta)
+    cos_tL, cos_tR = m.cos(theta_L), m.cos(theta_R)
+    cos_g, cos_d = m.cos(gamma), m.cos(delta)
     D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
     # beta_R = pi - 2 gamma - beta_L: d/d gamma = -2, d/d(chart variable) = -b1.
     qR_beta = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf  # d q_R / d beta_L
@@ -227,7 +167,7 @@ def _rows(x, k, c, system, chart="beta_L", jacobian=True, unit=0.0):
     return values, rows
 
 
-def _limit_rows(x, k, c, chart, jacobian, unit):
+def _limit_rows(x, k, c, chart, m, jacobian, unit):
     """The limit curve (``dr_limit`` = ``rs_limit``) in a form conditioned for every ``k``.
 
     On the limit ``c A = k s_L``; the double-rolling horizontal balance then equals the
@@ -247,24 +187,24 @@ def _limit_rows(x, k, c, chart, jacobian, unit):
     up to terms of order ``gamma``, and ``h`` is of order ``gamma``; here every row is of order
     one with independent gradients, and ``C`` has no cancellation.
     """
-    gamma, delta, upsilon = float(x[0]), float(x[1]), float(x[3])
-    beta_L, q_L, b1, dq_L = _left_contact(float(x[2]), chart)
-    beta_R = _PI - 2.0 * gamma - beta_L
-    s_L, c_L, s_R, c_R = math.sin(beta_L), math.cos(beta_L), math.sin(beta_R), math.cos(beta_R)
-    q_R = math.sqrt(s_R) if s_R >= 0.0 else math.nan
+    gamma, delta, upsilon = x[0], x[1], x[3]
+    beta_L, q_L, b1, dq_L = _left_contact(x[2], chart, m)
+    beta_R = m.pi - 2.0 * gamma - beta_L
+    s_L, c_L, s_R, c_R = m.sin(beta_L), m.cos(beta_L), m.sin(beta_R), m.cos(beta_R)
+    q_R = m.sqrt(s_R)
     n_L, n_R = s_L * q_L, s_R * q_R
     theta_L, theta_R = gamma + delta, gamma - delta
-    sin_tL, sin_tR = math.sin(theta_L), math.sin(theta_R)
-    sin_g, sin_d = math.sin(gamma), math.sin(delta)
+    sin_tL, sin_tR = m.sin(theta_L), m.sin(theta_R)
+    sin_g, sin_d = m.sin(gamma), m.sin(delta)
     D = 2.0 * sin_g * sin_d
-    sin_bg, cos_bg = math.sin(beta_L + gamma), math.cos(beta_L + gamma)
+    sin_bg, cos_bg = m.sin(beta_L + gamma), m.cos(beta_L + gamma)
     values = [c * (c_L + upsilon) - k * s_L,
               (n_L * (sin_tL + k * D) - n_R * sin_tR) / unit,
               (2.0 * c * q_R * sin_g * sin_bg - k * s_L * (q_L + q_R)) / unit]
     if not jacobian:
         return values, None
-    cos_tL, cos_tR = math.cos(theta_L), math.cos(theta_R)
-    cos_g, cos_d = math.cos(gamma), math.cos(delta)
+    cos_tL, cos_tR = m.cos(theta_L), m.cos(theta_R)
+    cos_g, cos_d = m.cos(gamma), m.cos(delta)
     D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
     qR_beta = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf  # d q_R / d beta_L
     nR_beta = -1.5 * q_R * c_R                                  # d n_R / d beta_L
@@ -287,8 +227,7 @@ def _limit_rows(x, k, c, chart, jacobian, unit):
 
 @dataclass(frozen=True)
 class BoundarySystem:
-    """One regime boundary as ``H(x) = 0``, ``H: R^4 -> R^3``,
-    ``x = (gamma, delta, beta_L, upsilon)``.
+    """One regime boundary as ``H(x) = 0``, ``H: R^4 -> R^3``, ``x = (gamma, delta, beta_L, upsilon)``.
 
     Attributes
     ----------
@@ -314,6 +253,15 @@ class BoundarySystem:
     validity : dict of Condition to callable
         ``condition -> f(x)`` at chart coordinates, ``f >= 0`` where the boundary is physical
         (its regime valid).
+    certified_validity : dict of Condition to callable
+        The same conditions in the form certification uses: the validity function itself,
+        except ``T/N_R <= k`` on ``dr_limit``, which on the limit curve has the sign of
+        ``k cos(gamma) - c sin(gamma)``: with ``c upsilon = k s_L - c cos beta_L`` there,
+        ``k s_R - c (cos beta_R - upsilon) = k (s_L + s_R) - c (cos beta_L + cos beta_R)
+        = 2 cos((beta_L - beta_R)/2) (k cos gamma - c sin gamma)`` (``beta_L + beta_R =
+        pi - 2 gamma``), so ``T/N_R <= k`` exactly where ``gamma <= arctan(k/c)``; for small
+        ``k`` the validity function is of order ``k^2`` along the curve and its enclosures
+        would not separate it from zero.
     """
 
     name: str
@@ -323,6 +271,7 @@ class BoundarySystem:
     conditioned: bool = False
     regime: str = field(init=False)
     validity: dict = field(init=False, repr=False, compare=False)
+    certified_validity: dict = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.name not in BOUNDARY_NAMES:
@@ -339,17 +288,23 @@ class BoundarySystem:
         k, c = self.params.k, self.params.c
         r = math.hypot(k, c)
         scale = self.scale
-        beta = (lambda y: y[2]) if self.chart == "beta_L" else (lambda y: y[2] * y[2])
+        sqrt_chart = self.chart == "sqrt_beta_L"
 
-        def tn_left(y):
-            return (k * math.sin(beta(y)) - c * (math.cos(beta(y)) + y[3])) / r
+        def tn_left(y, numbers=FLOATS):
+            beta_L = y[2] * y[2] if sqrt_chart else y[2]
+            return (k * numbers.sin(beta_L) - c * (numbers.cos(beta_L) + y[3])) / r
 
-        def tn_right(y):
-            beta_R = _PI - 2.0 * scale * y[0] - beta(y)
-            return (k * math.sin(beta_R) - c * (math.cos(beta_R) - y[3])) / r
+        def tn_right(y, numbers=FLOATS):
+            beta_R = numbers.pi - 2.0 * scale * y[0] - (y[2] * y[2] if sqrt_chart else y[2])
+            return (k * numbers.sin(beta_R) - c * (numbers.cos(beta_R) - y[3])) / r
 
-        def slip_left(y):
-            return (c * (math.cos(beta(y)) + y[3]) - k * math.sin(beta(y))) / r
+        def slip_left(y, numbers=FLOATS):
+            beta_L = y[2] * y[2] if sqrt_chart else y[2]
+            return (c * (numbers.cos(beta_L) + y[3]) - k * numbers.sin(beta_L)) / r
+
+        def limit_margin(y, numbers=FLOATS):
+            gamma = scale * y[0]
+            return (k * numbers.cos(gamma) - c * numbers.sin(gamma)) / r
 
         checks: dict[Condition, Callable] = {
             "dr_limit": {Condition.T_OVER_N_R: tn_right},
@@ -357,41 +312,89 @@ class BoundarySystem:
             "dr_no_roll": {Condition.T_OVER_N_L: tn_left, Condition.T_OVER_N_R: tn_right},
             "rs_no_roll": {Condition.SLIP_LEFT: slip_left},
         }[self.name]
+        certified = dict(checks)
+        if self.name == "dr_limit":
+            certified[Condition.T_OVER_N_R] = limit_margin
         object.__setattr__(self, "regime", REGIME_OF[self.name])
         object.__setattr__(self, "validity", checks)
+        object.__setattr__(self, "certified_validity", certified)
 
-    def _unscaled(self, y):
-        if self.scale == 1.0:
-            return y
-        return (y[0] * self.scale, y[1] * self.scale, y[2], y[3])
+    def _unscaled(self, y) -> list:
+        """Chart coordinates as Python numbers, ``gamma`` and ``delta`` in radians."""
+        y = y.tolist() if isinstance(y, np.ndarray) else list(y)
+        if self.scale != 1.0:
+            y[0] = y[0] * self.scale
+            y[1] = y[1] * self.scale
+        return y
 
     @property
     def _unit(self) -> float:
         return self.scale if self.conditioned else 0.0
 
-    def residual(self, x) -> np.ndarray:
-        """``H(x)``, shape (3,), at chart coordinates ``x``."""
-        values, _ = _rows(self._unscaled(x), self.params.k, self.params.c, self.name,
-                          self.chart, jacobian=False, unit=self._unit)
-        return np.array(values)
+    def _evaluate(self, y, numbers, jacobian: bool):
+        x = self._unscaled(y)
+        if numbers is not FLOATS:
+            x = [numbers.number(v) for v in x]
+        return _rows(x, self.params.k, self.params.c, self.name, self.chart, numbers,
+                     jacobian=jacobian, unit=self._unit)
 
-    def jacobian(self, x) -> np.ndarray:
-        """``dH/dx``, shape (3, 4), analytic, with respect to the chart coordinates."""
-        _, rows = _rows(self._unscaled(x), self.params.k, self.params.c, self.name, self.chart,
-                        unit=self._unit)
-        J = np.array(rows)
-        if self.scale != 1.0:
-            J[:, :2] *= self.scale
-        return J
+    def residual(self, x, numbers=None):
+        """``H(x)`` at chart coordinates ``x``: shape (3,) floats, or a list in ``numbers``.
+
+        ``numbers`` is a namespace of :mod:`continuation.numbers` (``None``: floats, returned as
+        an array); the same formulas are evaluated in any of them.
+        """
+        if numbers is None:
+            values, _ = _rows(self._unscaled(x), self.params.k, self.params.c, self.name,
+                              self.chart, FLOATS, jacobian=False, unit=self._unit)
+            return np.array(values)
+        return [numbers.number(v) for v in self._evaluate(x, numbers, False)[0]]
+
+    def jacobian(self, x, numbers=None):
+        """``dH/dx`` with respect to the chart coordinates, analytic: shape (3, 4) floats, or
+        three rows of four numbers of ``numbers`` (see :meth:`residual`)."""
+        if numbers is None:
+            return self.residual_and_jacobian(x)[1]
+        _, rows = self._evaluate(x, numbers, True)
+        scale, number = self.scale, numbers.number
+        return [[number(row[0] * scale), number(row[1] * scale), number(row[2]), number(row[3])]
+                for row in rows]
 
     def residual_and_jacobian(self, x):
-        """Both at once (one evaluation of the shared trigonometry)."""
-        values, rows = _rows(self._unscaled(x), self.params.k, self.params.c, self.name,
-                             self.chart, unit=self._unit)
+        """Both at once in floats (one evaluation of the shared trigonometry)."""
+        values, rows = self._evaluate(x, FLOATS, True)
         J = np.array(rows)
         if self.scale != 1.0:
             J[:, :2] *= self.scale
         return np.array(values), J
+
+    def edge_function(self, y, numbers=FLOATS):
+        """A function with the sign of ``gamma - delta`` on the boundary, with a simple zero at
+        the corner (chart coordinates ``y``).
+
+        On the boundary the horizontal balance holds, ``n_R sin theta_R = q_L P`` with
+        ``P = s_L (sin theta_L + k D)`` in rolling sliding (and on the limit curve) and
+        ``P = s_L sin theta_L + c A D`` in double rolling. Where ``n_R != 0`` and
+        ``s_L > 0`` (``0 < beta_L < pi``) ``sin theta_R``, and so ``gamma - delta``, has the
+        sign of ``q_L (sin theta_L + k D) n_R`` (rolling sliding) or ``q_L P n_R`` (double
+        rolling); ``q_L`` is odd in ``w``, so the corner ``w = 0``, where ``gamma - delta``
+        vanishes to third order on ``rs_no_roll``, is a simple zero of this function.
+        """
+        x = self._unscaled(y)
+        if numbers is not FLOATS:
+            x = [numbers.number(v) for v in x]
+        gamma, delta = x[0], x[1]
+        beta_L, q_L, _, _ = _left_contact(x[2], self.chart, numbers)
+        beta_R = numbers.pi - 2.0 * gamma - beta_L
+        s_R = numbers.sin(beta_R)
+        n_R = s_R * numbers.sqrt(s_R)
+        sin_tL = numbers.sin(gamma + delta)
+        D = 2.0 * numbers.sin(gamma) * numbers.sin(delta)
+        if self.name.startswith("rs") or (self.name.endswith("limit") and self.conditioned):
+            P = sin_tL + self.params.k * D
+        else:
+            P = numbers.sin(beta_L) * sin_tL + self.params.c * (numbers.cos(beta_L) + x[3]) * D
+        return q_L * P * n_R
 
     def to_x(self, y) -> np.ndarray:
         """Chart coordinates (any shape ``(..., 4)``) to ``x = (gamma, delta, beta_L, upsilon)``."""
@@ -457,8 +460,7 @@ def limit_seed(params: Parameters) -> np.ndarray:
 
 
 def dr_no_roll_branch_point() -> np.ndarray:
-    """``(arctan sqrt 2, 0, arctan(1/sqrt 2), 0)``: where ``dr_no_roll`` leaves the symmetric
-    family.
+    """``(arctan sqrt 2, 0, arctan(1/sqrt 2), 0)``: where ``dr_no_roll`` leaves the symmetric family.
 
     Notes
     -----
@@ -466,8 +468,7 @@ def dr_no_roll_branch_point() -> np.ndarray:
     is ``f(beta_L) = f(beta_R)``, ``f(beta) = sqrt(sin beta) cos beta``. Perturbing
     antisymmetrically, ``beta_{L,R} = beta +- e``, its linear part is ``2 f'(beta) e``, so a second
     branch can leave only where ``f'(beta) = cos^2 beta / (2 sqrt(sin beta)) - sin^(3/2) beta = 0``,
-    that is ``tan beta = 1/sqrt 2``, ``gamma = pi/2 - beta = arctan sqrt 2``, for any ``k`` and
-    ``c``.
+    that is ``tan beta = 1/sqrt 2``, ``gamma = pi/2 - beta = arctan sqrt 2``, for any ``k`` and ``c``.
     """
     return _symmetric_point(math.atan(math.sqrt(2.0)))
 

@@ -13,14 +13,15 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass
-from typing import cast
+from typing import Callable
 
 import numpy as np
 
 from continuation import Curve, Event, Options, Problem, SpecialKind, trace
+from continuation.numbers import FLOATS
 
 from ..model.boundaries import BoundarySystem, Condition, corner_point
-from .curves import POINT_ORDER, BoundaryCurve, BoundarySpecialPoint, PointKind, Where
+from .curves import BoundaryCurve, BoundarySpecialPoint, PointKind, Where, POINT_ORDER
 
 __all__ = ["DOMAIN_TOLERANCE", "Role", "Tagged", "assemble", "domain_events", "trace_curve",
            "validity_events"]
@@ -55,49 +56,66 @@ class Role(enum.Enum):
 
 @dataclass(frozen=True)
 class Tagged:
-    """An engine event with its role and, for a validity event, the condition it checks."""
+    """An engine event with its role and, for a validity event, the condition it checks.
+
+    Event functions take ``(y, numbers)`` (:mod:`continuation.numbers`), so that the same
+    formula is traced in floats and certified in balls. ``certified``, if given, is the
+    function certified in its place: one with the same zeros and signs along the boundary
+    but a simple zero where the traced one touches zero to higher order.
+    """
 
     event: Event
     role: Role
     condition: Condition | None = None
+    certified: Callable | None = None
 
 
-def _edge(name: str, role: Role, function, gradient) -> Tagged:
+def _edge(name: str, role: Role, function, gradient, certified=None) -> Tagged:
     """A terminal event for leaving the domain (its function decreases through zero)."""
-    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient), role)
+    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient), role,
+                  certified=certified)
 
 
 def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
     """The domain ``0 <= delta <= gamma <= pi/2``, the contact range and the origin, in the chart.
 
-    The ``upsilon = 0`` lines end at the corner ``(pi/4, pi/4)``, which lies on the edge
-    ``delta = gamma``: along them ``gamma - delta`` vanishes there like ``w^3`` and falls below
-    the points' accuracy (about ``1e-13``) at ``w ~ 5e-5``, where it would stop them short of
-    the corner. They carry no ``delta = gamma`` event: the corner ``w = 0`` ends them, and the
-    check of every row against the domain (:func:`_into_domain`) catches a line that leaves it.
+    ``delta = gamma`` is certified through :meth:`BoundarySystem.edge_function`, which has the
+    sign of ``gamma - delta`` along the boundary and a simple zero at the corner, where
+    ``gamma - delta`` vanishes to third order on ``rs_no_roll``. The ``upsilon = 0`` lines end at
+    that corner, and along them ``gamma - delta`` falls below the points' accuracy (about
+    ``1e-13``) at ``w ~ 5e-5``, where it would stop them short of it: for them the event is
+    that function in floats too (its gradient by central differences); the limit curves, which
+    only approach ``delta = gamma`` towards the origin, use ``gamma - delta`` itself.
     """
     g = system.scale
-    half_pi = 0.5 * math.pi
+    low = gamma_min / g
 
     def unit(*entries):
         return lambda y: np.array(entries, dtype=float)
 
-    edge_gamma = [] if system.name.endswith("no_roll") else [
-        _edge("delta = gamma", Role.DOMAIN_EDGE, lambda y: y[0] - y[1], unit(1, -1, 0, 0))]
+    if system.name.endswith("no_roll"):
+        edge_gamma = (system.edge_function, None)
+    else:
+        edge_gamma = (lambda y, numbers=FLOATS: y[0] - y[1], unit(1, -1, 0, 0))
     return [
-        _edge("delta = 0", Role.DOMAIN_EDGE, lambda y: y[1], unit(0, 1, 0, 0)),
-        *edge_gamma,
-        _edge("gamma = pi/2", Role.DOMAIN_EDGE, lambda y: half_pi / g - y[0], unit(-1, 0, 0, 0)),
-        _edge("gamma = gamma_min", Role.GAMMA_MIN, lambda y: y[0] - gamma_min / g,
+        _edge("delta = 0", Role.DOMAIN_EDGE, lambda y, numbers=FLOATS: y[1], unit(0, 1, 0, 0)),
+        _edge("delta = gamma", Role.DOMAIN_EDGE, *edge_gamma, certified=system.edge_function),
+        _edge("gamma = pi/2", Role.DOMAIN_EDGE,
+              lambda y, numbers=FLOATS: 0.5 * numbers.pi / g - y[0], unit(-1, 0, 0, 0)),
+        _edge("gamma = gamma_min", Role.GAMMA_MIN, lambda y, numbers=FLOATS: y[0] - low,
               unit(1, 0, 0, 0)),
-        _edge("beta_L = 0", Role.CORNER, lambda y: y[2], unit(0, 0, 1, 0)),
-        _edge("beta_R = 0", Role.DOMAIN_EDGE, lambda y: math.pi - 2.0 * g * y[0] - y[2] * y[2],
+        _edge("beta_L = 0", Role.CORNER, lambda y, numbers=FLOATS: y[2], unit(0, 0, 1, 0)),
+        _edge("beta_R = 0", Role.DOMAIN_EDGE,
+              lambda y, numbers=FLOATS: numbers.pi - 2.0 * g * y[0] - y[2] * y[2],
               lambda y: np.array([-2.0 * g, 0.0, -2.0 * y[2], 0.0])),
     ]
 
 
 def validity_events(system: BoundarySystem) -> list[Tagged]:
-    return [Tagged(Event(f"validity {condition.value}", f), Role.VALIDITY, condition)
+    """An event per validity condition of the boundary's regime (certified in the form of
+    :attr:`BoundarySystem.certified_validity`)."""
+    return [Tagged(Event(f"validity {condition.value}", f), Role.VALIDITY, condition,
+                   certified=system.certified_validity[condition])
             for condition, f in system.validity.items()]
 
 
@@ -120,12 +138,12 @@ def _end_role(curve: Curve, tagged: list[Tagged], x_end) -> Role | None:
     if _at_corner(x_end):
         return Role.CORNER
     ends = [p for p in curve.special_points if p.kind is SpecialKind.EVENT
-            and p.index == len(curve) - 1 and tagged[cast(int, p.event)].event.terminal]
-    return tagged[cast(int, ends[-1].event)].role if ends else None
+            and p.index == len(curve) - 1 and tagged[p.event].event.terminal]
+    return tagged[ends[-1].event].role if ends else None
 
 
-_END_OF_ROLE: dict[Role | None, Where] = {
-    Role.CORNER: Where.CORNER, Role.GAMMA_MIN: Where.GAMMA_MIN, Role.DOMAIN_EDGE: Where.DOMAIN_EDGE}
+_END_OF_ROLE = {Role.CORNER: Where.CORNER, Role.GAMMA_MIN: Where.GAMMA_MIN,
+                Role.DOMAIN_EDGE: Where.DOMAIN_EDGE}
 
 
 def _end_note(curve: Curve, tagged: list[Tagged], x_end) -> str:
@@ -168,17 +186,17 @@ def _engine_marks(curve: Curve, physical: np.ndarray, tagged: list[Tagged],
                 continue
             coordinate = "gamma" if p.coordinate == 0 else "delta"
             marks.add(p.index, _FOLD_KINDS[p.coordinate], f"turning point in {coordinate}")
-        elif p.kind is SpecialKind.EVENT and tagged[cast(int, p.event)].role is Role.VALIDITY:
+        elif p.kind is SpecialKind.EVENT and tagged[p.event].role is Role.VALIDITY:
             # A cut point: the physical part ends (or begins) here only if the physical flag
             # changes across it; a validity function that crosses zero while another one is
             # still violated (or touches zero) cuts nothing.
             i = p.index
             before = physical[i - 1] if i > 0 else False
             after = physical[i + 1] if i + 1 <= last else False
-            condition = tagged[cast(int, p.event)].condition
+            condition = tagged[p.event].condition
             if before and not after:
                 marks.add(i, PointKind.END, f"regime limit: {condition} fails beyond")
-                marks.limits[i] = cast(Condition, condition)
+                marks.limits[i] = condition
                 if condition is Condition.T_OVER_N_L:
                     marks.add(i, PointKind.JUNCTION, "meets dr_limit (T = k N_L)")
             elif after and not before:
@@ -281,5 +299,6 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     return BoundaryCurve(name=name, k=system.params.k, x=x[keep], s=s[keep],
                          physical=physical[keep], special_points=tuple(points),
                          status=status, ok=ok, residual=residual, engine=(curve,),
-                         start=physical_start, end=end if np.any(physical) else Where.NOWHERE)
+                         start=physical_start, end=end if np.any(physical) else Where.NOWHERE,
+                         engine_rows=np.flatnonzero(keep))
 

@@ -35,7 +35,7 @@ __all__ = [
 
 
 CSV_COLUMNS = ("boundary", "k", "s", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R",
-               "upsilon", "T_over_N_L", "T_over_N_R", "d_L", "physical", "point")
+               "upsilon", "T_over_N_L", "T_over_N_R", "d_L", "physical", "point", "certified")
 
 
 SPECIAL_POINT_COLUMNS = ("boundary", "k", "kind", "gamma", "delta", "beta_L", "upsilon")
@@ -142,6 +142,11 @@ class BoundaryCurve:
     start, end : Where
         Where the physical part starts and ends (``NOWHERE`` if it has none or the engine
         failed before its end).
+    engine_rows : ndarray of int
+        The rows of the engine curve (``engine[0]``) kept, in order.
+    certificate : continuation.Certificate or None
+        The proof in ball arithmetic (``trace_boundaries(k, certify=True)``); ``None`` if
+        certification was not asked for.
     """
 
     name: str
@@ -156,6 +161,14 @@ class BoundaryCurve:
     engine: tuple = field(default=(), repr=False, compare=False)
     start: Where = Where.NOWHERE
     end: Where = Where.NOWHERE
+    engine_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int), repr=False,
+                                    compare=False)
+    certificate: object = field(default=None, repr=False, compare=False)
+
+    @property
+    def certified(self) -> bool | None:
+        """``True`` if proven, ``False`` if certification failed, ``None`` if not asked for."""
+        return None if self.certificate is None else bool(self.certificate.proven)
 
     def failed(self, message: str) -> BoundaryCurve:
         """This curve marked as failed, with ``message`` as its status."""
@@ -175,7 +188,8 @@ class BoundaryCurve:
         for p in sorted(self.special_points, key=lambda p: -POINT_ORDER[p.kind]):
             point[p.index] = p.kind.value
         return pd.DataFrame({"boundary": self.name, "k": self.k, "s": self.s,
-                             **q, "physical": self.physical, "point": point},
+                             **q, "physical": self.physical, "point": point,
+                             "certified": self.certified},
                             columns=list(CSV_COLUMNS))
 
 

@@ -50,6 +50,7 @@ import numpy as np
 from scipy.linalg.lapack import dgesv
 
 from continuation import Curve, Event, Options, SpecialKind
+from continuation.numbers import FLOATS, require_flint
 
 from ..model.boundaries import (
     BOUNDARY_NAMES,
@@ -66,6 +67,7 @@ from .assembly import (
     trace_curve,
     validity_events,
 )
+from .certification import certify_boundaries
 from .curves import BoundaryCurve, BoundarySet, PointKind, TraceError, Where
 from .topology import CurveTopology, expected_topology
 
@@ -206,6 +208,8 @@ class _Job:
         self.gamma_min = gamma_min
         self.keep_unphysical = keep_unphysical
         self.seed = limit_seed(params)
+        #: boundary name -> (system, tagged events) of its engine curve, for certification
+        self.traced: dict = {}
 
     def _events(self, system: BoundarySystem) -> list[Tagged]:
         return [*domain_events(system, self.gamma_min), *validity_events(system)]
@@ -221,6 +225,7 @@ class _Job:
         params = self.params
         system = BoundarySystem("dr_no_roll", params, "sqrt_beta_L", conditioned=True)
         tagged = self._events(system)
+        self.traced["dr_no_roll"] = (system, tagged)
         engine = trace_curve(system, system.from_x(dr_no_roll_branch_point()), _UP,
                              self.options, tagged)
         curve = assemble("dr_no_roll", system, engine, tagged, self.keep_unphysical,
@@ -247,9 +252,10 @@ class _Job:
         params, scale = self.params, min(1.0, self.params.gamma_limit)
         system = BoundarySystem("dr_limit", params, "sqrt_beta_L", scale, conditioned=True)
         tagged = [*self._events(system),
-                  Tagged(Event("upsilon = 0", lambda y: y[3],
+                  Tagged(Event("upsilon = 0", lambda y, numbers=FLOATS: y[3],
                                gradient=lambda y: np.array([0.0, 0.0, 0.0, 1.0])),
                          Role.NO_ROLL)]
+        self.traced["dr_limit"] = self.traced["rs_limit"] = (system, tagged)
         engine = trace_curve(system, system.from_x(self.seed), _UP, self.options, tagged)
         note = "seed (arctan(k/c), 0): T/N = c tan gamma = k on delta = 0"
         marks, problem = _limit_junction(system, engine, tagged, junction)
@@ -269,6 +275,7 @@ class _Job:
         """
         system = BoundarySystem("rs_no_roll", self.params, "sqrt_beta_L")
         tagged = self._events(system)
+        self.traced["rs_no_roll"] = (system, tagged)
         if junction is not None:
             start, where, note = (system.from_x(junction), Where.JUNCTION,
                                   "junction with dr_limit where upsilon = 0")
@@ -279,8 +286,8 @@ class _Job:
 
 
 def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | None = None,
-                     gamma_min: float | None = None,
-                     raise_on_failure: bool = False) -> BoundarySet:
+                     gamma_min: float | None = None, raise_on_failure: bool = False,
+                     certify: bool = False) -> BoundarySet:
     """Trace ``dr_limit``, ``rs_limit``, ``dr_no_roll`` and ``rs_no_roll`` for friction ``k``.
 
     Parameters
@@ -298,13 +305,23 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         ``min(1e-3, arctan(k/c) / 100)``.
     raise_on_failure : bool
         Raise :class:`TraceError` (carrying everything traced) if any boundary failed.
+    certify : bool
+        Prove each boundary in ball arithmetic (:mod:`groove_model.tracing.certification`,
+        ``docs/certification.md``): ``BoundaryCurve.certificate`` says proven, or not proven
+        and why. Needs python-flint (``pip install 'groove-continuation[certify]'``).
 
     Returns
     -------
     BoundarySet
         ``ok`` only if every boundary was traced to its expected end with its expected
         junctions and folds, in their expected order
-        (:func:`groove_model.tracing.topology.expected_topology`).
+        (:func:`groove_model.tracing.topology.expected_topology`). A boundary that is not
+        proven is still ``ok``; its certificate says what failed.
+
+    Raises
+    ------
+    ImportError
+        With ``certify=True`` if python-flint is not installed (before anything is traced).
 
     Notes
     -----
@@ -312,6 +329,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
     params = Parameters.coerce(k)
+    if certify:
+        require_flint()
     options = options or DEFAULT_OPTIONS
     if gamma_min is None:
         gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
@@ -337,6 +356,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         curves["rs_limit"] = curves["rs_limit"].failed(
             f"rs_limit is {distance!r} from dr_limit, more than {LIMIT_TOLERANCE:g}: the two "
             "systems of the one limit curve disagree")
+    if certify:
+        curves = certify_boundaries(curves, job.traced, gamma_min)
     order = {name: i for i, name in enumerate(BOUNDARY_NAMES)}
     result = BoundarySet(k=params.k,
                          curves=dict(sorted(curves.items(), key=lambda kv: order[kv[0]])),

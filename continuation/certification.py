@@ -1,0 +1,493 @@
+r"""Certify a traced curve: a proof in ball arithmetic that it follows one smooth curve of zeros.
+
+:func:`certify` takes a :class:`~continuation.result.Curve` and the problem it was traced from,
+written over a numbers namespace (:mod:`continuation.numbers`: ``residual(x, numbers)`` and
+``jacobian(x, numbers)``, the same functions that trace it in floats), and proves, in Arb
+ball arithmetic (every rounding outwards):
+
+1. *Tubes* (:mod:`continuation.krawczyk`): around each segment between consecutive points a
+   tube (a radius per offset coordinate, reaching ``extension`` of its length beyond both
+   ends) in which the zeros of ``H`` are exactly one smooth arc, a graph over one coordinate
+   (parametrised Krawczyk test; van den Berg, Lessard & Mischaikow, Math. Comp. 79 (2010)).
+2. *Points*: every point of the curve is within ``node_distance`` of a zero of ``H`` (the
+   zero of its slice), and that zero lies in the tubes on both sides of the point, so the arcs
+   of consecutive segments overlap: one smooth branch from the first point to the last.
+3. *Folds* (for each fold coordinate) and *events* (:mod:`continuation.zeros`): the zeros of
+   the tangent's component and of each event function along the branch are exactly the
+   reported ones (in the event's direction), each simple and in a small box proven to hold
+   exactly one solution of the augmented system ``(H, phi) = 0``; a zero at an end of the
+   curve (a start on an event's zero set, a symmetric start) is proven the same way and
+   listed, not counted as a crossing.
+
+Anything else fails with the first segment or point where a test failed and why; a curve is
+never reported proven on evidence that is only numerical. Branch points (where the solution
+set is not one smooth arc) are not certified, and no neighbourhood of a singular end is cut
+out automatically: a curve ending at a singular point fails there, with the segment named.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
+from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
+from .numbers import FLOATS, balls
+from .result import Curve, SpecialKind
+from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
+
+__all__ = ["Certificate", "CertifyOptions", "Check", "Exclusion", "ProvenPoint", "certify"]
+
+
+@dataclass(frozen=True)
+class _Failure:
+    check: Check
+    message: str
+    segment: int | None = None
+    point: int | None = None
+
+
+@dataclass
+class _Segment:
+    frame: Frame
+    pieces: list
+    orientation: int
+
+
+def _upper(x) -> float:
+    return math.inf if not x.is_finite() else math.nextafter(float(abs(x).upper()), math.inf)
+
+
+class _Run:
+    """The state of one certification: tubes, points and the proofs so far."""
+
+    def __init__(self, curve: Curve, problem, events, B, options: CertifyOptions) -> None:
+        self.curve, self.problem, self.events = curve, problem, tuple(events)
+        self.B, self.options = B, options
+        self.x = np.asarray(curve.x, float)
+        self.segments: list[_Segment] = []
+        self.nodes: list = []
+        self.node_distance = 0.0
+        self.proven: list[ProvenPoint] = []
+        self._node_jacobians: dict = {}
+
+    # -- tubes and points -------------------------------------------------------------------
+
+    def _tube(self, frame: Frame, first: bool, last: bool):
+        """Proven pieces covering the segment and its extensions, or a message.
+
+        Tubes reach beyond the segment's ends by a fraction of its length (so that
+        consecutive tubes overlap), and at least by what a point's box may be off (the boxes
+        of its points must lie in it). Before the first point only by the latter: a curve
+        starts on its seed's zeros, and a tube reaching further back could hold another zero
+        of a function that leaves the seed nearly tangentially. Beyond the last point as far
+        as a special point's box may be from it (a terminal event's zero a little beyond).
+
+        A piece whose test fails is cut in parts, as many as its contraction suggests
+        (``|I - A H' N|`` grows about linearly with the piece's length), at least two.
+        """
+        L = frame.length
+        # beyond each end by a fraction of the length, and at least by what a point's box may
+        # be off it: the boxes of the points at both ends must lie in the tube
+        scale = 1.0 + max(abs(v) for v in frame.x_a)
+        floor = self.options.node_tolerance * scale
+        ext = max(self.options.extension * L, 4.0 * floor)
+        end = max(ext, 2.0 * self.options.special_tolerance * scale)
+        widest = max(self.options.max_radius * L, 8.0 * floor)
+        pending, pieces = [(-4.0 * floor if first else -ext, L + (end if last else ext), 0)], []
+        orientation = 0
+        while pending:
+            a, b, level = pending.pop()
+            piece = solve_piece(self.problem, frame, self.B, a, b, widest, 4.0 * floor)
+            if not isinstance(piece, Failure):
+                sigma = frame.speed(kernel(piece.jacobian))
+                s = 1 if sigma > 0.0 else -1 if sigma < 0.0 else 0
+                if s and orientation in (0, s):
+                    orientation = s
+                    pieces.append(piece)
+                    continue
+                piece = Failure("the arc's direction along the chord is not decided")
+            if level >= self.options.max_depth:
+                return f"{piece} (after {level} cuts, on tau in [{a:.6g}, {b:.6g}])"
+            q = piece.contraction
+            parts = min(16, max(2, math.ceil(2.0 * q))) if math.isfinite(q) else 2
+            edges = [a + (b - a) * j / parts for j in range(parts + 1)]
+            edges[-1] = b
+            pending += [(edges[j], edges[j + 1], level + 1) for j in reversed(range(parts))]
+        pieces.sort(key=lambda p: p.lo)
+        return _Segment(frame, pieces, orientation)
+
+    def _node(self, i: int, segment: _Segment, tau: float):
+        """The zero of point ``i``'s slice, with its distance from the point (or a failure)."""
+        scale = 1.0 + float(np.max(np.abs(self.x[i])))
+        piece = next(p for p in (segment.pieces if tau == 0.0 else reversed(segment.pieces))
+                     if p.lo <= tau <= p.hi)
+        node = solve_slice(self.problem, segment.frame, self.B, piece, tau,
+                           self.options.node_tolerance * scale)
+        if isinstance(node, str):
+            return _Failure(Check.POINT, f"point {i} is not proven on the curve: {node}", point=i)
+        distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i]))
+        if not distance <= self.options.node_tolerance * scale:
+            return _Failure(Check.POINT, f"point {i} is {distance:.3g} from the curve, more than "
+                            f"{self.options.node_tolerance * scale:.3g}", point=i)
+        self.node_distance = max(self.node_distance, distance)
+        return node
+
+    def node_jacobian(self, i: int):
+        """``H'`` over the box of point ``i``'s zero (computed once, when needed)."""
+        if i not in self._node_jacobians:
+            self._node_jacobians[i] = self.problem.jacobian(self.nodes[i].box, self.B)
+        return self._node_jacobians[i]
+
+    def inside(self, box, s: int, lo: float = -math.inf, hi: float = math.inf) -> bool:
+        """Whether the ball vector ``box`` lies in the tube of segment ``s`` (its interior),
+        with its ``tau`` in ``[lo, hi]``."""
+        segment = self.segments[s]
+        tau, y = segment.frame.coordinates(box, self.B)
+        if not (tau >= lo and tau <= hi):
+            return False
+        for piece in segment.pieces:
+            if tau >= piece.lo and tau <= piece.hi:
+                return all(self.B.error(r).contains_interior(yi)
+                           for yi, r in zip(y, piece.radii))
+        return False
+
+    def arcs(self):
+        """Tubes, points and connections, segment by segment; the first failure or None."""
+        x, t = self.x, np.asarray(self.curve.tangents, float)
+        m = len(x) - 1
+        for i in range(m):
+            frame = Frame.build(x[i], t[i], x[i + 1], t[i + 1])
+            if isinstance(frame, str):
+                return _Failure(Check.TUBE, f"segment {i}: {frame}", segment=i)
+            segment = self._tube(frame, i == 0, i == m - 1)
+            if isinstance(segment, str):
+                return _Failure(Check.TUBE, f"segment {i} (points {i} to {i + 1}): no tube "
+                                f"proven: {segment}", segment=i)
+            if self.segments and segment.orientation != self.segments[-1].orientation:
+                return _Failure(Check.TUBE, f"segment {i}: the curve's kernel turns against "
+                                "the direction of travel (a branch point?)", segment=i)
+            self.segments.append(segment)
+            node = self._node(i, segment, 0.0)
+            if isinstance(node, _Failure):
+                return node
+            self.nodes.append(node)
+            if i > 0 and not self.inside(node.box, i - 1):
+                return _Failure(Check.CONNECTION, f"the curve at point {i} does not lie in the "
+                                f"tubes on both sides: segments {i - 1} and {i} are not "
+                                "proven to be one branch", segment=max(i - 1, 0), point=i)
+        last = self._node(m, self.segments[-1], self.segments[-1].frame.length)
+        if isinstance(last, _Failure):
+            return last
+        self.nodes.append(last)
+        return None
+
+    # -- zeros of fold components and events --------------------------------------------------
+
+    def _reported(self, function: Function) -> set:
+        if function.event is None:
+            return {p.index for p in self.curve.special_points
+                    if p.kind is SpecialKind.FOLD and p.coordinate == function.coordinate}
+        return {p.index for p in self.curve.special_points
+                if p.kind is SpecialKind.EVENT and p.event == function.position}
+
+    def _fail(self, function: Function, message: str, segment=None, point=None) -> _Failure:
+        check = Check.EVENT if function.event is not None else Check.FOLD
+        return _Failure(check, f"{function.name}: {message}", segment=segment, point=point)
+
+    def _leaves(self, function: Function, s: int, cache: dict):
+        if s not in cache:
+            segment = self.segments[s]
+            cache[s] = classify(function, segment, self.problem, self.B, segment.orientation,
+                                self.options.leaf_depth)
+        return cache[s]
+
+    def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
+        """Prove the zero of ``phi`` at point ``i``: the only one in the monotone stretch
+        through the point (the last run of the segment before, the first of the one after)."""
+        m = len(self.x) - 1
+        stretch = []
+        if i > 0:
+            before = self._leaves(function, i - 1, cache)
+            length = self.segments[i - 1].frame.length
+            stretch.append((i - 1, run_at(before, length) if before else None))
+        if i < m:
+            after = self._leaves(function, i, cache)
+            stretch.append((i, run_at(after, 0.0) if after else None))
+        signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
+        if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:
+            return self._fail(function, f"the zero at point {i} is not proven to be the only one "
+                              "next to it (no monotone stretch through it)",
+                              segment=stretch[0][0], point=i)
+        direction = signs.pop()
+        if reported and function.direction and direction != function.direction:
+            return self._fail(function, f"its zero at point {i} is reported but crosses the "
+                              "other way", point=i)
+        if not reported and 0 < i < m and (not function.direction
+                                           or direction == function.direction):
+            return self._fail(function, f"vanishes at point {i}, where no zero is reported",
+                              point=i)
+        scale = 1.0 + float(np.max(np.abs(self.x[i])))
+        box = prove_zero(function, self.problem, self.x[i], self.B,
+                         self.options.special_tolerance * scale)
+        if isinstance(box, str):
+            return self._fail(function, f"its zero at point {i}: {box}", point=i)
+        centre, radius = box
+        balls_ = [self.B.arb(c, radius) for c in centre]
+        if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch):
+            return self._fail(function, f"the box of its zero at point {i} is not in the tubes "
+                              "of the stretch through it", point=i)
+        distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
+        kind = SpecialKind.EVENT if function.event is not None else SpecialKind.FOLD
+        self.proven.append(ProvenPoint(kind, i, np.array(centre), radius, distance,
+                                       function.coordinate, function.position, reported))
+        return None
+
+    def _hull(self, lo: int, hi: int) -> list:
+        """A box holding the arcs of segments ``lo`` to ``hi - 1`` (union of their pieces)."""
+        boxes = [p.arc for s in range(lo, hi) for p in self.segments[s].pieces]
+        hull = list(boxes[0])
+        for box in boxes[1:]:
+            hull = [a.union(b) for a, b in zip(hull, box)]
+        return hull
+
+    def _exclude(self, function: Function, lo: int, hi: int, keep: set, excluded: dict) -> None:
+        """Mark the segments in ``[lo, hi)`` on whose arcs ``phi`` has one sign, by halving.
+
+        One enclosure over the hull of many segments decides most of an event that stays far
+        from zero; segments next to a point in ``keep`` are left to the finer tests.
+        """
+        if any(lo <= i <= hi for i in keep) and hi - lo == 1:
+            return
+        if not any(lo <= i <= hi for i in keep):
+            box = self._hull(lo, hi)
+            J = self.problem.jacobian(box, self.B) if function.event is None else None
+            value = function.value(box, J, self.B)
+            sign = 1 if value > 0.0 else -1 if value < 0.0 else 0
+            if sign:
+                excluded.update({s: sign for s in range(lo, hi)})
+                return
+        if hi - lo > 1:
+            mid = (lo + hi) // 2
+            self._exclude(function, lo, mid, keep, excluded)
+            self._exclude(function, mid, hi, keep, excluded)
+
+    def _sign_at(self, function: Function, i: int, excluded: dict) -> int:
+        """The sign of ``phi`` at the curve's zero near point ``i`` (0 if not decided)."""
+        for s in (i - 1, i):
+            if s in excluded:
+                return excluded[s]
+        J = self.node_jacobian(i) if function.event is None else None
+        value = function.value(self.nodes[i].box, J, self.B)
+        return 1 if value > 0.0 else -1 if value < 0.0 else 0
+
+    def _vanishes_at_end(self, function: Function, i: int) -> bool:
+        """Whether ``phi`` may vanish in the box of an event proven at the end point ``i``.
+
+        A curve ends at a terminal event's zero; its last point may lie a rounding beyond it,
+        so a function vanishing there too (a fold component at the corner where the curve
+        ends) vanishes between the last two points: a zero at the end, not a crossing.
+        """
+        for p in self.proven:
+            if p.index == i and p.kind is SpecialKind.EVENT:
+                box = [self.B.arb(c, p.radius) for c in p.centre]
+                J = self.problem.jacobian(box, self.B) if function.event is None else None
+                value = function.value(box, J, self.B)
+                if not (value > 0.0 or value < 0.0):
+                    return True
+        return False
+
+    def zeros(self, function: Function):
+        """Every zero of ``phi`` along the branch is reported (or at an end) and proven."""
+        m = len(self.x) - 1
+        reported = self._reported(function)
+        excluded: dict = {}
+        self._exclude(function, 0, m, reported, excluded)
+        signs = [self._sign_at(function, i, excluded) for i in range(m + 1)]
+        for i in (0, m):
+            if signs[i] and self._vanishes_at_end(function, i):
+                signs[i] = 0
+        at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
+        cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
+        for i in at_zero:
+            failure = self._zero_at(function, i, i in reported, cache)
+            if failure is not None:
+                return failure
+            signs[i] = 0  # the zero proven at the point: counted there, not on its segments
+        for s in range(m):
+            if s in excluded:
+                continue
+            leaves = self._leaves(function, s, cache)
+            crossings = None if leaves is None else count_zeros(
+                leaves, signs[s], signs[s + 1], self.segments[s].frame.length)
+            if crossings is None:
+                return self._fail(function, f"its zeros on segment {s} are not decided",
+                                  segment=s)
+            for direction in crossings:
+                if not function.direction or direction == function.direction:
+                    values = (float_value(function, self.problem, self.x[s]),
+                              float_value(function, self.problem, self.x[s + 1]))
+                    return self._fail(function, f"crosses zero on segment {s} (points {s} to "
+                                      f"{s + 1}: {values[0]:.3g} to {values[1]:.3g}) where no "
+                                      "zero is reported", segment=s)
+        return None
+
+
+def _functions(curve: Curve, events, fold_coordinates) -> list[Function]:
+    """Events reported at an end first, then the other events, then folds: the boxes proven
+    at the ends are consulted for the functions after them (:meth:`_Run._vanishes_at_end`)."""
+    names = curve.problem.names if curve.problem is not None and curve.problem.names else None
+    ends = {p.event for p in curve.special_points if p.kind is SpecialKind.EVENT
+            and p.index in (0, len(curve) - 1)}
+    functions = [Function(f"event '{event.name}'", event=event, position=j,
+                          direction=event.direction) for j, event in enumerate(events)]
+    functions.sort(key=lambda f: f.position not in ends)
+    for c in fold_coordinates:
+        label = names[c] if names and c < len(names) else f"x[{c}]"
+        functions.append(Function(f"fold in {label}", coordinate=c))
+    return functions
+
+
+def _probe(name: str, function, x) -> None:
+    """Call ``function(x, FLOATS)`` once: a ``TypeError`` that says what to write if it fails."""
+    try:
+        function(x, FLOATS)
+    except TypeError as exc:
+        raise TypeError(f"{name} must take (x, numbers) and be written over the numbers "
+                        f"namespace (continuation.numbers) to be certified: {exc}") from None
+
+
+def _check(curve: Curve, problem, events, fold_coordinates) -> _Failure | None:
+    """Arguments that cannot be right raise; a curve that cannot be certified is a failure."""
+    if not isinstance(curve, Curve):
+        raise TypeError(f"curve must be a continuation.Curve, got {type(curve).__name__}")
+    if getattr(problem, "jacobian", None) is None or getattr(problem, "residual", None) is None:
+        raise ValueError("certify needs problem.residual(x, numbers) and "
+                         "problem.jacobian(x, numbers), written over a numbers namespace")
+    n1 = curve.x.shape[1] if curve.x.ndim == 2 else 0
+    for c in fold_coordinates:
+        if not (isinstance(c, (int, np.integer)) and 0 <= c < n1):
+            raise ValueError(f"fold coordinate {c!r} is outside [0, {n1 - 1}]")
+    folds = {p.coordinate for p in curve.special_points if p.kind is SpecialKind.FOLD}
+    if not folds <= set(fold_coordinates):
+        raise ValueError(f"the curve reports folds in coordinates {sorted(folds)}, but "
+                         f"fold_coordinates = {tuple(fold_coordinates)!r}: pass them all")
+    used = [p.event for p in curve.special_points if p.kind is SpecialKind.EVENT]
+    if used and max(used) >= len(events):
+        raise ValueError(f"the curve reports event {max(used)}, but certify was given "
+                         f"{len(events)} event(s): pass every event of the run, in its order")
+    if len(curve) < 2:
+        return _Failure(Check.INPUT, f"the curve has {len(curve)} point(s); at least two are "
+                        "needed")
+    x0 = [float(v) for v in curve.x[0]]
+    _probe("problem.residual", problem.residual, x0)
+    _probe("problem.jacobian", problem.jacobian, x0)
+    for event in events:
+        _probe(f"the function of event '{event.name}'", event.function, x0)
+    if not curve.ok:
+        return _Failure(Check.INPUT, f"the run failed ({curve.status.name}): {curve.message}")
+    for p in curve.special_points:
+        if p.kind is SpecialKind.BRANCH_POINT:
+            return _Failure(Check.INPUT, f"branch point at point {p.index}: the solution set is "
+                            "not one smooth arc there, which is not certified", point=p.index)
+    return None
+
+
+def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
+            options: CertifyOptions | None = None, numbers=None) -> Certificate:
+    """Prove that a traced curve follows one smooth curve of zeros, with its folds and events.
+
+    Parameters
+    ----------
+    curve : Curve
+        A traced curve (points, unit tangents, special points).
+    problem : Problem or object
+        ``residual(x, numbers)`` (n values) and ``jacobian(x, numbers)`` (n rows of n + 1),
+        written over a numbers namespace (:mod:`continuation.numbers`); called with floats,
+        balls and jets.
+    events : sequence of Event
+        The run's events, in its order (positions as in ``SpecialPoint.event``), with
+        functions ``function(x, numbers)``; an event may be replaced by one with the same
+        zeros and signs along the curve.
+    fold_coordinates : sequence of int, optional
+        Default: the run's ``options.fold_coordinates``.
+    options : CertifyOptions, optional
+    numbers : namespace, optional
+        The ball arithmetic (default :func:`continuation.numbers.balls`, python-flint).
+
+    Returns
+    -------
+    Certificate
+        ``proven``, or the first failing test with its segment or point.
+
+    Raises
+    ------
+    ImportError
+        If python-flint is not installed (the message names the extra to install).
+    ValueError
+        If the problem has no Jacobian, a fold coordinate is out of range, or the curve
+        reports an event that is not passed.
+    """
+    start = time.perf_counter()
+    B = numbers or balls()
+    options = options or CertifyOptions()
+    if fold_coordinates is None:
+        fold_coordinates = curve.options.fold_coordinates if curve.options is not None else ()
+    failure = _check(curve, problem, events, fold_coordinates)
+    curve, merged = _merge_duplicates(curve, _DUPLICATE)
+    if failure is None and len(curve) < 2:
+        failure = _Failure(Check.INPUT, "all its points are one point (to rounding)")
+    run = _Run(curve, problem, events, B, options)
+    if failure is None:
+        failure = run.arcs()
+    if failure is None:
+        for function in _functions(curve, events, fold_coordinates):
+            failure = run.zeros(function)
+            if failure is not None:
+                break
+    pieces = sum(len(s.pieces) for s in run.segments)
+    radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
+    common = dict(segments=len(run.segments), pieces=pieces, max_radius=radius,
+                  node_distance=run.node_distance, special_points=tuple(run.proven),
+                  seconds=time.perf_counter() - start)
+    note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
+        "point to rounding)" if merged else ""
+    if failure is not None:
+        return Certificate(False, f"not proven: {failure.check}: {failure.message}{note}",
+                           failure.check, failure.segment, failure.point, **common)
+    m = len(curve.x) - 1
+    return Certificate(True, f"proven: {m} segments ({pieces} tube pieces, radius <= "
+                       f"{radius:.2g}), points within {run.node_distance:.2g} of the curve, "
+                       f"{len(run.proven)} zero(s) of folds and events proven{note}", **common)
+
+
+#: points this close (relative to 1 + |x|) repeat the point before: a special point located twice
+_DUPLICATE = 1e-13
+
+
+def _merge_duplicates(curve: Curve, tolerance: float) -> tuple[Curve, list]:
+    """The curve without points that repeat the point before (special points located twice at
+    one place); their special points move to the kept point. Returns it and the dropped rows.
+
+    Indices of the returned curve (and so of failures) count the kept points only.
+    """
+    x = np.asarray(curve.x, float)
+    if len(x) < 2:
+        return curve, []
+    step = np.max(np.abs(np.diff(x, axis=0)), axis=1)
+    scale = 1.0 + np.max(np.abs(x[1:]), axis=1)
+    dropped = [i + 1 for i in np.flatnonzero(step <= tolerance * scale).tolist()]
+    if not dropped:
+        return curve, []
+    keep = np.setdiff1d(np.arange(len(x)), dropped)
+    new_index = np.searchsorted(keep, np.arange(len(x)), side="right") - 1
+    points = tuple(dataclasses.replace(p, index=int(new_index[p.index]))
+                   for p in curve.special_points)
+    return dataclasses.replace(curve, x=curve.x[keep], s=curve.s[keep],
+                               tangents=curve.tangents[keep], ds=curve.ds[keep],
+                               newton_iterations=curve.newton_iterations[keep],
+                               residuals=curve.residuals[keep], special_points=points), dropped

@@ -1,0 +1,382 @@
+r"""Number types for formulas written once: floats, Arb balls, and jets (forward derivatives).
+
+A formula written over a *numbers* namespace ``m`` is evaluated in floats for tracing and in
+ball arithmetic for certification, from the same source, so the two cannot drift apart. It
+may use
+
+* ``+ - * /`` between numbers and Python floats, unary ``-`` and ``**`` with a small integer;
+* comparisons (``a >= b``), which mean *certainly* (for a ball: for every value it holds);
+  for a branch between two formulas that are both exact where both apply;
+* ``m.sin``, ``m.cos``, ``m.sqrt`` (NaN, or a non-finite ball, below zero), ``m.sinc``
+  (``sin u / u``, 1 at 0) and the constant ``m.pi``;
+* ``m.rigorous`` (whether results enclose the exact values), ``m.gauss_legendre(n, panels)``
+  (nodes and weights of ``n``-point rules on ``panels`` equal parts of ``[0, 1]``, exact balls
+  when rigorous) and ``m.analytic_error(bound, args)``:
+  the remainder of an approximation of an analytic function of ``args`` (a ball of radius
+  ``bound(args, 0)``; with jets, also its derivatives, by Cauchy's estimate from
+  ``bound(args, widen)``, the bound over the complex polydisc of radius ``widen`` around the
+  arguments).
+
+Three implementations: :data:`FLOATS` (``math``; the hot path), :func:`balls` (python-flint's
+Arb midpoint-radius balls, every operation rounded outwards: the ``[certify]`` extra) and
+:func:`jets` (value, first and optionally second derivative along one direction, over any of
+the two, by forward-mode differentiation; Griewank & Walther, *Evaluating Derivatives*, SIAM
+2008, ch. 13).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import math
+
+import numpy as np
+
+__all__ = ["FLOATS", "Jet", "balls", "jets", "require_flint"]
+
+
+def _float_sqrt(a: float) -> float:
+    return math.sqrt(a) if a >= 0.0 else math.nan
+
+
+def _float_sinc(u: float) -> float:
+    # sin(u)/u = 1 - u^2/6 + u^4/120 - ...: the series where the quotient would cancel
+    return math.sin(u) / u if abs(u) > 1e-4 else 1.0 - u * u / 6.0
+
+
+def _float_sinc_derivatives(u: float):
+    """``(sinc u, sinc' u, sinc'' u)`` in floats."""
+    if abs(u) < 1e-2:
+        u2 = u * u
+        return 1.0 - u2 / 6.0 + u2 * u2 / 120.0, u * (-1.0 / 3.0 + u2 / 30.0), \
+            -1.0 / 3.0 + u2 / 10.0
+    s0 = math.sin(u) / u
+    s1 = (math.cos(u) - s0) / u
+    return s0, s1, -s0 - 2.0 * s1 / u
+
+
+@functools.lru_cache(maxsize=8)
+def _float_gauss(n: int, panels: int = 1) -> tuple:
+    nodes, weights = np.polynomial.legendre.leggauss(n)
+    return tuple(((p + 0.5 * (1.0 + float(t))) / panels, 0.5 * float(w) / panels)
+                 for p in range(panels) for t, w in zip(nodes, weights))
+
+
+class _Floats:
+    """Python floats with ``math``: fast, not rigorous."""
+
+    name = "floats"
+    rigorous = False
+    sin = staticmethod(math.sin)
+    cos = staticmethod(math.cos)
+    sqrt = staticmethod(_float_sqrt)
+    sinc = staticmethod(_float_sinc)
+    sinc_derivatives = staticmethod(_float_sinc_derivatives)
+    pi = math.pi
+
+    @staticmethod
+    def number(x) -> float:
+        return float(x)
+
+    @staticmethod
+    def value(x):
+        return x
+
+    @staticmethod
+    def gauss_legendre(n: int, panels: int = 1) -> tuple:
+        return _float_gauss(n, panels)
+
+    @staticmethod
+    def analytic_error(bound, args) -> float:
+        return 0.0
+
+    @staticmethod
+    def is_finite(x) -> bool:
+        return math.isfinite(x)
+
+
+#: the float namespace (``math``), used on the tracer's hot path
+FLOATS = _Floats()
+
+
+def require_flint():
+    """python-flint's ``arb`` type; ``ImportError`` naming the extra to install if missing."""
+    try:
+        import flint  # optional: only certification needs it
+    except ImportError:
+        raise ImportError("certification needs python-flint (Arb ball arithmetic): "
+                          "pip install 'groove-continuation[certify]' (or pip install "
+                          "python-flint)") from None
+    return flint
+
+
+class _Balls:
+    """Arb midpoint-radius balls (python-flint ``arb``), rounded outwards: rigorous."""
+
+    name = "arb"
+    rigorous = True
+
+    def __init__(self, flint) -> None:
+        self.arb = flint.arb
+        self._arb_mat = flint.arb_mat
+        self._ctx = flint.ctx
+        self._pi: dict = {}
+        self._gauss: dict = {}
+
+    @property
+    def pi(self):
+        """pi as a ball at the current precision."""
+        prec = self._ctx.prec
+        if prec not in self._pi:
+            self._pi[prec] = self.arb.pi()
+        return self._pi[prec]
+
+    @contextlib.contextmanager
+    def precision(self, bits: int):
+        """Evaluate at ``bits`` of precision inside the ``with`` block (python-flint's context)."""
+        ctx = self._ctx
+        saved = ctx.prec
+        ctx.prec = max(bits, saved)
+        try:
+            yield self
+        finally:
+            ctx.prec = saved
+
+    def matmul(self, X, Y) -> list:
+        """The product of two matrices (nested lists of floats or balls), as nested lists."""
+        return (self._arb_mat(X) * self._arb_mat(Y)).tolist()
+
+    def number(self, x):
+        return x if type(x) is self.arb else self.arb(x)
+
+    @staticmethod
+    def value(x):
+        return x
+
+    def sin(self, a):
+        return self.number(a).sin()
+
+    def cos(self, a):
+        return self.number(a).cos()
+
+    def sqrt(self, a):
+        return self.number(a).sqrt()  # NaN ball where any value is negative
+
+    def sinc(self, a):
+        return self.number(a).sinc()
+
+    def sinc_derivatives(self, u):
+        """``(sinc u, sinc' u, sinc'' u)``, by their alternating series near 0.
+
+        ``sinc^(j)(u) = sum_k (-1)^k (2k)!/(2k-j)! u^(2k-j)/(2k+1)!``; for ``|u| < 1/10`` the
+        terms fall by more than half each, so the tail is within twice the first omitted term
+        (beyond, the quotients lose at most a factor 10 to cancellation).
+        """
+        u = self.number(u)
+        s0 = u.sinc()
+        if abs(u) < 0.1:
+            u2 = u * u
+            tail1 = 2.0 * abs(u) * u2 * u2 * u2 / 45360.0
+            tail2 = 2.0 * u2 * u2 * u2 / 6480.0
+            s1 = u * (-1.0 / 3.0 + u2 * (1.0 / 30.0 - u2 / 840.0)) + self.arb(0, tail1.upper())
+            s2 = -1.0 / 3.0 + u2 * (1.0 / 10.0 - u2 / 168.0) + self.arb(0, tail2.upper())
+            return s0, s1, s2
+        s1 = (u.cos() - s0) / u
+        return s0, s1, -s0 - 2.0 * s1 / u
+
+    def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
+        key = (n, panels, self._ctx.prec)
+        if key not in self._gauss:
+            roots = [self.arb.legendre_p_root(n, i, weight=True) for i in range(n)]
+            self._gauss[key] = tuple(((p + 0.5 * (1.0 + t)) / panels, 0.5 * w / panels)
+                                     for p in range(panels) for t, w in roots)
+        return self._gauss[key]
+
+    def bounds(self, x) -> tuple[float, float]:
+        """``(lo, hi)``: floats with ``lo <= x <= hi`` for every value of the ball ``x``."""
+        x = self.number(x)
+        return (math.nextafter(float(x.lower()), -math.inf),
+                math.nextafter(float(x.upper()), math.inf))
+
+    def error(self, bound: float):
+        """The ball ``[-bound, bound]`` (NaN if ``bound`` is not finite)."""
+        return self.arb(0, bound) if math.isfinite(bound) else self.arb.nan()
+
+    def analytic_error(self, bound, args):
+        return self.error(bound(tuple(self.bounds(a) for a in args), 0.0))
+
+    def is_finite(self, x) -> bool:
+        return x.is_finite()
+
+
+@functools.lru_cache(maxsize=1)
+def balls() -> _Balls:
+    """The Arb ball namespace (python-flint); ``ImportError`` naming the extra if missing."""
+    return _Balls(require_flint())
+
+
+class Jet:
+    """A number with its first (``d``) and optionally second (``dd``) derivative along one direction.
+
+    ``v``, ``d`` and ``dd`` are base numbers (floats or balls); ``dd`` is ``None`` for
+    first-order jets. Comparisons and ``abs`` act on the value (for branches only).
+    """
+
+    __slots__ = ("v", "d", "dd")
+
+    def __init__(self, v, d, dd=None) -> None:
+        self.v, self.d, self.dd = v, d, dd
+
+    def __add__(self, other):
+        if type(other) is Jet:
+            dd = None if self.dd is None else self.dd + other.dd
+            return Jet(self.v + other.v, self.d + other.d, dd)
+        return Jet(self.v + other, self.d, self.dd)
+
+    __radd__ = __add__
+
+    def __sub__(self, other):
+        if type(other) is Jet:
+            dd = None if self.dd is None else self.dd - other.dd
+            return Jet(self.v - other.v, self.d - other.d, dd)
+        return Jet(self.v - other, self.d, self.dd)
+
+    def __rsub__(self, other):
+        return Jet(other - self.v, -self.d, None if self.dd is None else -self.dd)
+
+    def __neg__(self):
+        return Jet(-self.v, -self.d, None if self.dd is None else -self.dd)
+
+    def __mul__(self, other):
+        if type(other) is Jet:
+            dd = None if self.dd is None else (self.dd * other.v + 2.0 * self.d * other.d
+                                               + self.v * other.dd)
+            return Jet(self.v * other.v, self.d * other.v + self.v * other.d, dd)
+        return Jet(self.v * other, self.d * other, None if self.dd is None else self.dd * other)
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, other):
+        if type(other) is Jet:
+            return self * other._reciprocal()
+        return Jet(self.v / other, self.d / other, None if self.dd is None else self.dd / other)
+
+    def __rtruediv__(self, other):
+        return self._reciprocal() * other
+
+    def _reciprocal(self):
+        r = 1.0 / self.v
+        d = -self.d * r * r
+        dd = None if self.dd is None else (2.0 * self.d * self.d * r - self.dd) * r * r
+        return Jet(r, d, dd)
+
+    def __pow__(self, n: int):
+        if n == 2:
+            return self * self
+        if n == 3:
+            return self * self * self
+        raise ValueError(f"Jet ** {n!r}: only the exponents 2 and 3 are supported")
+
+    def __abs__(self):
+        return abs(self.v)
+
+    def __lt__(self, other):
+        return self.v < (other.v if type(other) is Jet else other)
+
+    def __le__(self, other):
+        return self.v <= (other.v if type(other) is Jet else other)
+
+    def __gt__(self, other):
+        return self.v > (other.v if type(other) is Jet else other)
+
+    def __ge__(self, other):
+        return self.v >= (other.v if type(other) is Jet else other)
+
+    def __repr__(self) -> str:
+        return f"Jet({self.v!r}, {self.d!r}, {self.dd!r})"
+
+
+def _chain(a, f0, f1, f2):
+    """``f(a)`` for a jet ``a`` from ``f``, ``f'`` and ``f''`` at its value (``f2`` may be None)."""
+    if type(a) is not Jet:
+        return f0
+    dd = None if a.dd is None else f1 * a.dd + f2 * a.d * a.d
+    return Jet(f0, f1 * a.d, dd)
+
+
+class _Jets:
+    """Jets over a base namespace: derivatives of a formula along one direction."""
+
+    def __init__(self, base) -> None:
+        self.base = base
+        self.name = f"jets over {base.name}"
+        self.rigorous = base.rigorous
+
+    @property
+    def pi(self):
+        return self.base.pi
+
+    def value(self, x):
+        return x.v if type(x) is Jet else x
+
+    def number(self, x):
+        return x if type(x) is Jet else self.base.number(x)
+
+    def sin(self, a):
+        b = self.base
+        v = self.value(a)
+        s, c = b.sin(v), b.cos(v)
+        return _chain(a, s, c, -s)
+
+    def cos(self, a):
+        b = self.base
+        v = self.value(a)
+        s, c = b.sin(v), b.cos(v)
+        return _chain(a, c, -s, -c)
+
+    def sqrt(self, a):
+        r = self.base.sqrt(self.value(a))
+        d1 = 0.5 / r
+        return _chain(a, r, d1, -0.5 * d1 / (r * r))
+
+    def sinc(self, a):
+        return _chain(a, *self.base.sinc_derivatives(self.value(a)))
+
+    def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
+        return self.base.gauss_legendre(n, panels)
+
+    def analytic_error(self, bound, args):
+        """The remainder ``E(args)`` and its derivatives along the jets' direction.
+
+        ``bound(args, w)`` bounds ``|E|`` over the complex polydisc of radius ``w`` around
+        the arguments. Along ``args + lam * dargs`` (``|lam| <= rho``) Cauchy's estimate gives
+        ``|E'| <= B / rho`` and ``|E''| <= 2 B / rho^2`` with ``B = bound(args, rho |dargs|)``;
+        the best of a few ``rho`` is taken.
+        """
+        base = self.base
+        values = tuple(self.value(a) for a in args)
+        error0 = base.analytic_error(bound, values)
+        if not base.rigorous:
+            return error0
+        intervals = tuple(base.bounds(v) for v in values)
+        speed = max(base.bounds(abs(a.d))[1] if type(a) is Jet else 0.0 for a in args)
+        best1 = best2 = 0.0 if speed == 0.0 else math.inf
+        for widen in (1e-3, 1e-2, 3e-2, 0.1) if speed > 0.0 else ():
+            sup = bound(intervals, widen)
+            rho = widen / speed * (1.0 - 1e-12)  # the polydisc of radius widen holds the disc
+            best1 = min(best1, sup / rho * (1.0 + 1e-12))
+            best2 = min(best2, 2.0 * sup / (rho * rho) * (1.0 + 1e-12))
+        second_order = any(type(a) is Jet and a.dd is not None for a in args)
+        return Jet(error0, base.error(best1), base.error(best2) if second_order else None)
+
+    def is_finite(self, x) -> bool:
+        if type(x) is not Jet:
+            return self.base.is_finite(x)
+        parts = (x.v, x.d) if x.dd is None else (x.v, x.d, x.dd)
+        return all(self.base.is_finite(p) for p in parts)
+
+
+@functools.lru_cache(maxsize=4)
+def jets(base=FLOATS) -> _Jets:
+    """The jet namespace over ``base`` (:data:`FLOATS` or :func:`balls`)."""
+    return _Jets(base)

@@ -1,0 +1,239 @@
+r"""Zeros of a scalar function along a proven arc: fold components and event functions.
+
+Along the arc proven by :mod:`continuation.krawczyk` a function ``phi`` is either an event
+``e(x)`` or, for a fold coordinate ``c``, the Cramer component ``k_c = (-1)^c det H'_{-c}`` of
+the kernel of ``H'`` (the tangent's component ``c`` up to a positive factor, so its zeros are
+the folds in ``x_c``). On each segment ``phi`` is either *excluded* from zero (its enclosure
+over the tube does not contain 0) or *monotone* (its derivative along the arc, from jets in
+the direction of the kernel ``k``, has one sign), possibly after cutting the segment into
+leaves; a monotone stretch has at most one zero, and it has one exactly when ``phi`` has
+opposite signs at its ends (the proven points of the curve).
+
+At a point where a zero is reported (or at an end of the curve where ``phi`` vanishes) the
+zero is proven by Krawczyk's test on the augmented system ``(H, phi) = 0`` in a small box:
+exactly one solution, a regular one, so the zero is simple (for a fold: ``d k_c / ds != 0``,
+a quadratic turning point). If ``phi`` is monotone on both segments next to the point and the
+box lies in their tubes, that solution is the only zero of ``phi`` on both.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, square_box
+from .numbers import FLOATS, Jet, jets
+
+__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero", "run_at", "runs"]
+
+
+@dataclass(frozen=True)
+class Function:
+    """A scalar function along the curve: an event (``event`` its position) or a fold
+    component (``coordinate``). ``direction``: the event's direction (0 for folds)."""
+
+    name: str
+    event: object = None          # the Event, or None for a fold component
+    position: int | None = None
+    coordinate: int | None = None
+    direction: int = 0
+
+    def value(self, box, J, B):
+        """Enclosure of ``phi`` over ``box`` (``J``: ``H'`` over the box, for folds)."""
+        if self.event is not None:
+            return B.number(self.event.function(box, B))
+        return kernel(J)[self.coordinate]
+
+    def slope(self, box, k, problem, B):
+        """Enclosure of ``D phi [k]`` over ``box`` for kernel vectors in ``k``."""
+        J2 = jets(B)
+        x = [Jet(b, kj) for b, kj in zip(box, k)]
+        if self.event is not None:
+            value = self.event.function(x, J2)
+        else:
+            value = kernel(problem.jacobian(x, J2))[self.coordinate]
+        return value.d if type(value) is Jet else B.number(0.0)
+
+    def augmented(self, problem):
+        """``(F, DF)`` of the augmented system ``(H, phi) = 0`` over any numbers."""
+        def F(x, m):
+            H = list(problem.residual(x, m))
+            if self.event is not None:
+                return H + [self.event.function(x, m)]
+            return H + [kernel(problem.jacobian(x, m))[self.coordinate]]
+
+        def DF(x, m):
+            rows = [list(r) for r in problem.jacobian(x, m)]
+            J1 = jets(m)
+            gradient = []
+            for j in range(len(x)):
+                xj = [Jet(xi, 1.0 if i == j else 0.0) for i, xi in enumerate(x)]
+                if self.event is not None:
+                    value = self.event.function(xj, J1)
+                else:
+                    value = kernel(problem.jacobian(xj, J1))[self.coordinate]
+                gradient.append(value.d if type(value) is Jet else 0.0)
+            return rows + [gradient]
+
+        return F, DF
+
+
+def _sign(x) -> int:
+    """+1 or -1 if the ball excludes 0, else 0."""
+    return 1 if x > 0.0 else -1 if x < 0.0 else 0
+
+
+@dataclass(frozen=True)
+class Leaf:
+    """A stretch ``lo <= tau <= hi`` of one segment: ``sign`` of ``phi`` (``excluded``) or of
+    ``d phi / d tau`` (monotone)."""
+
+    excluded: bool
+    sign: int
+    lo: float = -math.inf
+    hi: float = math.inf
+
+    def same(self, other: Leaf) -> bool:
+        return self.excluded == other.excluded and self.sign == other.sign
+
+
+def runs(leaves) -> list:
+    """Consecutive leaves of the same kind and sign merged (their ranges joined)."""
+    out: list = []
+    for leaf in leaves:
+        if out and out[-1].same(leaf):
+            out[-1] = Leaf(leaf.excluded, leaf.sign, out[-1].lo, leaf.hi)
+        else:
+            out.append(leaf)
+    return out
+
+
+def _leaf(function, piece, frame, problem, B, orientation: int):
+    """The leaf of one tube piece, or ``None`` if no test decides.
+
+    ``phi`` is excluded from zero if its enclosure over the piece's arc box is, or if its
+    centred form in ``tau`` is: ``phi(x(tau_0)) + (d phi / d tau)(T) (T - tau_0)``, with the
+    value at the arc's point on the slice ``tau_0`` (proven in a thin box) and
+    ``d phi / d tau = D phi [k] / (d tau / d lambda)``.
+    """
+    s = _sign(function.value(piece.arc, piece.jacobian, B))
+    if s:
+        return Leaf(True, s, piece.lo, piece.hi)
+    k = kernel(piece.jacobian)
+    slope = function.slope(piece.arc, k, problem, B)
+    d = _sign(slope)
+    if d:
+        return Leaf(False, d * orientation, piece.lo, piece.hi)
+    mid = 0.5 * (piece.lo + piece.hi)
+    thin = solve_slice(problem, frame, B, piece, mid, math.inf)  # the arc's point at tau_0
+    centre = thin.box if not isinstance(thin, str) else frame.tube_box(B.number(mid), piece.y)
+    J = problem.jacobian(centre, B) if function.event is None else None
+    sigma = frame.speed(k)
+    half = max(piece.hi - mid, mid - piece.lo) * (1.0 + 1e-15)
+    s = _sign(function.value(centre, J, B) + slope / sigma * B.error(half))
+    return Leaf(True, s, piece.lo, piece.hi) if s else None
+
+
+#: most tube pieces one segment may be cut into to decide one function on it
+LEAF_BUDGET = 200
+
+
+def classify(function, segment, problem, B, orientation: int, depth: int = 40):
+    """The leaves of ``phi`` on one segment (a list in order of ``tau``), or ``None``.
+
+    ``segment`` has ``pieces`` (proven tube pieces) and ``frame``. A piece that neither test
+    decides is cut in halves, each with its own, thinner tube (Krawczyk's test again on the
+    shorter piece: the arc there is the same, being the only zero in either tube); only the
+    undecided halves are cut again, so next to a zero with a small slope the leaves get as
+    short as the slope needs, down to ``depth`` cuts and :data:`LEAF_BUDGET` pieces.
+    """
+    found, budget = [], LEAF_BUDGET
+    for piece in segment.pieces:
+        stack = [(piece, 0)]
+        while stack:
+            current, level = stack.pop()
+            leaf = _leaf(function, current, segment.frame, problem, B, orientation)
+            if leaf is not None:
+                found.append(leaf)
+                continue
+            budget -= 2
+            if level >= depth or budget < 0:
+                return None
+            mid = 0.5 * (current.lo + current.hi)
+            for a, b in ((mid, current.hi), (current.lo, mid)):
+                sub = solve_piece(problem, segment.frame, B, a, b, current.radius)
+                if isinstance(sub, Failure):
+                    return None
+                stack.append((sub, level + 1))
+    return sorted(found, key=lambda leaf: leaf.lo)
+
+
+def run_at(leaves, tau: float):
+    """The run (merged leaves) holding ``tau``, or ``None``."""
+    return next((run for run in runs(leaves) if run.lo <= tau <= run.hi), None)
+
+
+def count_zeros(leaves, left: int, right: int, length: float):
+    """Zeros of ``phi`` on a segment between its end points (``tau = 0`` and ``length``), whose
+    signs are ``left`` and ``right``; 0 for an end where ``phi`` vanishes (a zero proven there,
+    in the monotone run holding that end, which is not counted here). Runs only in the
+    tube's extensions beyond the ends belong to the neighbouring segments and are left out.
+
+    Returns a list of crossing directions (``+1`` increasing along the curve), or ``None``
+    when the count is open (a turning point between two monotone runs, or a run
+    inconsistent with the signs).
+    """
+    stretch = [run for run in runs(leaves) if run.hi > 0.0 and run.lo < length]
+    if not stretch:
+        return None
+    if left == 0 and right == 0 and len(stretch) == 1:
+        # one monotone run with a zero proven at both ends: one zero (a monotone function
+        # vanishes once), e.g. a crossing located a rounding after the start
+        return [] if not stretch[0].excluded else None
+    if left == 0:
+        if stretch[0].excluded:
+            return None
+        current, stretch = stretch[0].sign, stretch[1:]  # past the zero: the slope's sign
+    else:
+        current = left
+    if right == 0:
+        if not stretch or stretch[-1].excluded:
+            return None
+        target, stretch = -stretch[-1].sign, stretch[:-1]  # before the zero
+    else:
+        target = right
+    crossings = []
+    for i, run in enumerate(stretch):
+        if run.excluded:
+            if run.sign != current:
+                return None  # cannot happen on a true arc; no claim
+            continue
+        following = stretch[i + 1] if i + 1 < len(stretch) else None
+        if following is None:
+            end = target
+        elif following.excluded:
+            end = following.sign
+        else:
+            return None
+        if end != current:
+            if run.sign != end:
+                return None
+            crossings.append(run.sign)
+        current = end
+    return crossings if current == target else None
+
+
+def prove_zero(function, problem, x_hat, B, tolerance: float):
+    """Krawczyk's test for the augmented system ``(H, phi) = 0`` near ``x_hat``:
+    ``(centre, radius)`` or a message."""
+    F, DF = function.augmented(problem)
+    return square_box(F, DF, x_hat, B, tolerance)
+
+
+def float_value(function, problem, x) -> float:
+    """``phi`` at a float point (for messages)."""
+    if function.event is not None:
+        return float(function.event.function(x, FLOATS))
+    J = [[float(v) for v in row] for row in problem.jacobian(x)]
+    d = determinant([row[:function.coordinate] + row[function.coordinate + 1:] for row in J])
+    return d if function.coordinate % 2 == 0 else -d

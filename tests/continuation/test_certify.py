@@ -1,0 +1,185 @@
+"""Certification in ball arithmetic: true curves proven, wrong curves rejected where they are wrong."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from continuation import Event, Options, Problem, SpecialKind, trace
+from continuation.numbers import FLOATS
+
+pytest.importorskip("flint")
+
+from continuation.certification import CertifyOptions, Check, certify  # noqa: E402
+from continuation.numbers import Jet, balls, jets  # noqa: E402
+
+
+def cubic():
+    """``u^3 - u - lambda = 0`` in ``(lambda, u)``: folds at ``lambda = -+2/(3 sqrt 3)``."""
+    return Problem(lambda x, numbers=FLOATS: [x[1] ** 3 - x[1] - x[0]],
+                   lambda x, numbers=FLOATS: [[-1.0, 3.0 * x[1] ** 2 - 1.0]],
+                   names=("lambda", "u"))
+
+
+def circles():
+    """Two concentric circles, radii 1 and 2: ``(r^2 - 1)(r^2 - 4) = 0``."""
+    def residual(x, numbers=FLOATS):
+        r2 = x[0] * x[0] + x[1] * x[1]
+        return [(r2 - 1.0) * (r2 - 4.0)]
+
+    def jacobian(x, numbers=FLOATS):
+        r2 = x[0] * x[0] + x[1] * x[1]
+        d = 2.0 * r2 - 5.0
+        return [[2.0 * x[0] * d, 2.0 * x[1] * d]]
+
+    return Problem(residual, jacobian)
+
+
+def wavy():
+    """``n = 2``: the unit sphere cut by ``z = 0.3 sin(2 x)``, a closed curve with sines."""
+    return Problem(
+        lambda x, m=FLOATS: [x[0] * x[0] + x[1] * x[1] + x[2] * x[2] - 1.0,
+                             x[2] - 0.3 * m.sin(2.0 * x[0])],
+        lambda x, m=FLOATS: [[2.0 * x[0], 2.0 * x[1], 2.0 * x[2]],
+                             [-0.6 * m.cos(2.0 * x[0]), 0.0, 1.0]])
+
+
+STOP = Event("u <= 2", lambda x, numbers=FLOATS: x[1] - 2.0, 1, True)
+MARK = Event("u = 1/2", lambda x, numbers=FLOATS: x[1] - 0.5)
+FOLD = 2.0 / (3.0 * math.sqrt(3.0))
+
+
+@pytest.fixture(scope="module")
+def cubic_curve():
+    return trace(cubic(), [-6.0, -2.0], direction=[1.0, 0.0],
+                 options=Options(fold_coordinates=(0,)), events=[STOP, MARK])
+
+
+def test_cubic_is_proven_with_its_folds_and_events(cubic_curve):
+    cert = certify(cubic_curve, cubic(), [STOP, MARK])
+    assert cert.proven, cert.message
+    assert cert.check is None and cert.segment is None
+    folds = [p for p in cert.special_points if p.kind is SpecialKind.FOLD]
+    assert sorted(p.centre[0] for p in folds) == pytest.approx([-FOLD, FOLD], abs=1e-12)
+    for p in folds:
+        exact = np.array([FOLD if p.centre[0] > 0 else -FOLD,
+                          -1 / math.sqrt(3) if p.centre[0] > 0 else 1 / math.sqrt(3)])
+        assert np.max(np.abs(p.centre - exact)) <= p.radius + 1e-15  # the box holds the fold
+        assert p.distance <= 1e-10
+    events = sorted((p.event, p.index) for p in cert.special_points
+                    if p.kind is SpecialKind.EVENT)
+    assert [e for e, _ in events] == [0, 1]
+    assert 0 < cert.max_radius < 0.1 and cert.node_distance < 1e-9
+
+
+@pytest.mark.parametrize("problem, start, folds", [
+    (circles, [1.0, 0.0], (0, 1)),
+    (wavy, [1.0, 0.0, 0.3 * math.sin(2.0)], (0, 1, 2)),
+])
+def test_closed_curves_are_proven(problem, start, folds):
+    curve = trace(problem(), start, options=Options(fold_coordinates=folds))
+    assert curve.status.name == "CLOSED"
+    cert = certify(curve, problem())
+    assert cert.proven, cert.message
+    reported = sum(1 for p in curve.special_points if p.kind is SpecialKind.FOLD)
+    assert sum(p.reported for p in cert.special_points) == reported
+
+
+def _rows(curve, rows, drop_kinds=()):
+    """The curve restricted to ``rows`` (special points of dropped rows, or of the given
+    kinds, removed and the rest re-indexed): a wrong curve that claims to be whole."""
+    rows = list(rows)
+    where = {r: i for i, r in enumerate(rows)}
+    points = tuple(dataclasses.replace(p, index=where[p.index]) for p in curve.special_points
+                   if p.index in where and p.kind not in drop_kinds)
+    return dataclasses.replace(curve, x=curve.x[rows].copy(), s=curve.s[rows],
+                               tangents=curve.tangents[rows], ds=curve.ds[rows],
+                               newton_iterations=curve.newton_iterations[rows],
+                               residuals=curve.residuals[rows], special_points=points)
+
+
+def test_a_point_moved_off_the_curve_is_rejected_there(cubic_curve):
+    wrong = _rows(cubic_curve, range(len(cubic_curve)))
+    wrong.x[20, 1] += 1e-6
+    cert = certify(wrong, cubic(), [STOP, MARK])
+    assert not cert.proven and cert.check is Check.POINT and cert.point == 20, cert.message
+    assert "point 20" in cert.message
+
+
+def test_a_fold_removed_with_its_points_is_rejected(cubic_curve):
+    fold = cubic_curve.special("fold")[0].index
+    rows = [i for i in range(len(cubic_curve)) if abs(i - fold) > 1]
+    cert = certify(_rows(cubic_curve, rows), cubic(), [STOP, MARK])
+    assert not cert.proven and cert.check in (Check.FOLD, Check.TUBE), cert.message
+    assert cert.segment == fold - 2, cert.message
+
+
+def test_a_skipped_event_is_rejected(cubic_curve):
+    crossing = next(p.index for p in cubic_curve.special_points if p.event == 1)
+    rows = [i for i in range(len(cubic_curve)) if i != crossing]
+    cert = certify(_rows(cubic_curve, rows), cubic(), [STOP, MARK])
+    assert not cert.proven and cert.check is Check.EVENT and cert.segment == crossing - 1
+    assert "u = 1/2" in cert.message
+
+
+def test_an_unreported_fold_is_rejected(cubic_curve):
+    cert = certify(_rows(cubic_curve, range(len(cubic_curve)), (SpecialKind.FOLD,)), cubic(),
+                   [STOP, MARK])
+    assert not cert.proven and cert.check is Check.FOLD, cert.message
+    fold = cubic_curve.special("fold")[0].index
+    assert cert.point == fold or cert.segment in (fold - 1, fold), cert.message
+
+
+def test_two_spliced_branches_are_rejected_at_the_splice():
+    inner = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
+    outer = trace(circles(), [2.0, 0.0], options=Options(fold_coordinates=(0, 1)))
+    half = len(inner) // 2
+    tail = [i for i in range(len(outer)) if outer.x[i, 1] < 0 and outer.x[i, 0] > -1.9]
+    x = np.vstack([inner.x[:half], outer.x[tail]])
+    t = np.vstack([inner.tangents[:half], outer.tangents[tail]])
+    s = np.arange(len(x), dtype=float)
+    spliced = dataclasses.replace(inner, x=x, tangents=t, s=s, ds=np.diff(s, prepend=0.0),
+                                  newton_iterations=np.zeros(len(x), int),
+                                  residuals=np.zeros(len(x)), special_points=())
+    cert = certify(spliced, circles(), fold_coordinates=())
+    assert not cert.proven and cert.segment == half - 1, cert.message
+
+
+def test_an_event_must_be_written_over_numbers(cubic_curve):
+    with pytest.raises(ValueError, match="event"):
+        certify(cubic_curve, cubic(), [STOP])
+    plain = Event("u = 1/2", lambda x: x[1] - 0.5)
+    with pytest.raises(TypeError, match="must take \\(x, numbers\\)"):
+        certify(cubic_curve, cubic(), [STOP, plain])
+    with pytest.raises(ValueError, match="fold_coordinates"):
+        certify(cubic_curve, cubic(), [STOP, MARK], fold_coordinates=())
+
+
+def test_options_are_checked():
+    with pytest.raises(ValueError, match="node_tolerance"):
+        CertifyOptions(node_tolerance=-1.0)
+    with pytest.raises(ValueError, match="max_depth"):
+        CertifyOptions(max_depth=-1)
+
+
+def test_jets_give_derivatives_in_floats_and_balls():
+    B = balls()
+    for base in (FLOATS, B):
+        m = jets(base)
+        x = Jet(base.number(0.7), base.number(1.0), base.number(0.0))
+        y = m.sqrt(m.sin(x) * x) / (1.0 + x * x) + m.sinc(x * x)
+        h = 1e-6
+
+        def f(v):
+            return math.sqrt(math.sin(v) * v) / (1 + v * v) + math.sin(v * v) / (v * v)
+
+        d = (f(0.7 + h) - f(0.7 - h)) / (2 * h)
+        dd = (f(0.7 + h) - 2 * f(0.7) + f(0.7 - h)) / h ** 2
+        if base is B:
+            assert abs(float(y.d.mid()) - d) <= float(y.d.rad()) + 1e-8
+            assert abs(float(y.dd.mid()) - dd) <= float(y.dd.rad()) + 1e-3
+        else:
+            assert y.d == pytest.approx(d, rel=1e-8) and y.dd == pytest.approx(dd, rel=1e-3)
+    ball = jets(B).sinc(Jet(B.arb(0, 1e-3), B.number(1.0), B.number(0.0)))
+    assert ball.v.contains(1.0) and ball.d.contains(0.0) and ball.dd.contains(-1.0 / 3.0)

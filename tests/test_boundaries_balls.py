@@ -1,0 +1,108 @@
+"""The boundary formulas in ball arithmetic: one source, every float value inside its ball."""
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from continuation.numbers import FLOATS, Jet, jets
+from groove_model.model.boundaries import BOUNDARY_NAMES, BoundarySystem
+from groove_model.model.parameters import Compliance, Parameters
+
+pytest.importorskip("flint")
+
+from continuation.numbers import balls  # noqa: E402
+
+B = balls()
+
+
+def systems(params, x):
+    for name in BOUNDARY_NAMES:
+        for chart in ("beta_L", "sqrt_beta_L"):
+            yield BoundarySystem(name, params, chart)
+        # The float quadrature of the deflated torque is exact to rounding where both contact
+        # angles exceed about 0.3 (along dr_no_roll beta_L + beta_R = pi - 2 gamma >= 1.23);
+        # closer to beta = 0 its error grows (1e-10 at beta ~ 0.05), which balls bound.
+        if name != "rs_no_roll" and (name != "dr_no_roll" or math.pi - 2 * x[0] >= 1.2):
+            yield BoundarySystem(name, params, "sqrt_beta_L", 0.5, conditioned=True)
+
+
+@st.composite
+def points(draw):
+    gamma = draw(st.floats(0.05, 0.5 * math.pi - 0.05))
+    delta = draw(st.floats(0.0, 1.0)) * gamma
+    beta_L = draw(st.floats(0.02, 0.98)) * (math.pi - 2 * gamma)
+    return np.array([gamma, delta, beta_L, draw(st.floats(-2.0, 2.0))])
+
+
+def inside(ball, value: float) -> bool:
+    """Whether the float value lies in the ball, up to the float evaluation's own rounding
+    (amplified up to 1e-12 where a quotient cancels): a formula that drifted would be off by
+    far more."""
+    slack = 1e-11 * (1.0 + abs(value))
+    return abs(float(ball.mid()) - value) <= float(ball.rad()) + slack
+
+
+@settings(max_examples=40, deadline=None)
+@given(x=points(), k=st.floats(0.01, 1000.0), c=st.sampled_from([1.0, 0.6]),
+       width=st.sampled_from([0.0, 1e-9, 1e-4]), offset=st.floats(-1.0, 1.0))
+def test_float_values_lie_in_their_balls(x, k, c, width, offset):
+    for system in systems(Parameters(k, Compliance(c)), x):
+        y = system.from_x(x)
+        box = [B.arb(v, width * (1 + abs(v))) for v in y]
+        inner = y + offset * width * (1 + np.abs(y)) * 0.99
+        H, J = system.residual_and_jacobian(inner)
+        Hb, Jb = system.residual(box, B), system.jacobian(box, B)
+        assert all(inside(h, v) for h, v in zip(Hb, H)), system
+        assert all(inside(Jb[i][j], J[i, j]) for i in range(3) for j in range(4)), system
+        for f in system.validity.values():
+            assert inside(f(box, B), f(inner))
+        assert inside(system.edge_function(box, B), system.edge_function(inner))
+
+
+@pytest.mark.parametrize("d", [0.0, 1e-9, 1e-3, 0.049, 0.051, 0.2, 0.59, 0.61])
+def test_the_deflated_torque_is_enclosed_across_its_switches(d):
+    """Floats switch between quadrature and quotient at |d| = 0.05, balls at 0.3 and 0.6."""
+    system = BoundarySystem("dr_no_roll", Parameters(10.0), "sqrt_beta_L", conditioned=True)
+    gamma = 0.9
+    beta_L = 0.5 * (math.pi - 2 * gamma + d)  # beta_L - beta_R = d
+    y = [gamma, 0.1, math.sqrt(beta_L), 0.0]
+    H, J = system.residual_and_jacobian(np.array(y))
+    Hb, Jb = system.residual(y, B), system.jacobian(y, B)
+    # the float quotient's rounding is amplified by 1/d^2 next to its switch: 1e-12
+    assert abs(float(Hb[0].mid()) - H[0]) <= float(Hb[0].rad()) + 1e-13
+    assert float(Hb[0].rad()) < 1e-12
+    assert all(abs(float(Jb[0][j].mid()) - J[0, j]) <= float(Jb[0][j].rad()) + 1e-12
+               for j in range(4))
+    assert max(float(v.rad()) for v in Jb[0]) < 1e-10
+
+
+def test_jets_of_the_jacobian_match_central_differences():
+    system = BoundarySystem("dr_no_roll", Parameters(10.0), "sqrt_beta_L", conditioned=True)
+    y = np.array([0.95, 0.02, 0.785, 0.0])
+    for j in range(4):
+        e = np.eye(4)[j]
+        x = [Jet(B.number(v), B.number(e[i])) for i, v in enumerate(y)]
+        JJ = system.jacobian(x, jets(B))
+        h = 1e-6
+        fd = (system.jacobian(y + h * e) - system.jacobian(y - h * e)) / (2 * h)
+        for r in range(3):
+            for col in range(4):
+                d = JJ[r][col].d if type(JJ[r][col]) is Jet else B.number(0.0)
+                assert abs(float(d.mid()) - fd[r, col]) <= float(d.rad()) + 1e-7
+
+
+@pytest.mark.parametrize("k", [0.3, 1.0, 10.0])
+def test_the_edge_function_has_the_sign_of_gamma_minus_delta_on_the_boundaries(k):
+    from groove_model.tracing import trace_boundaries
+
+    params = Parameters(k)
+    for name, curve in trace_boundaries(k).curves.items():
+        system = BoundarySystem(name, params, "sqrt_beta_L")
+        for x in curve.x:
+            theta_R = x[0] - x[1]
+            value = system.edge_function(system.from_x(x), FLOATS)
+            if abs(theta_R) > 1e-9:
+                assert np.sign(value) == np.sign(theta_R), (name, x)

@@ -1,0 +1,175 @@
+"""Every boundary of k = 1 and k = 10 proven in ball arithmetic; wrong boundaries rejected."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from continuation import Event, SpecialKind, certify
+from continuation.certification import Check
+from continuation.numbers import FLOATS
+from groove_model.model.boundaries import BoundarySystem, dr_no_roll_branch_point
+from groove_model.model.parameters import Parameters
+from groove_model.tracing import trace_boundaries
+from groove_model.tracing.assembly import domain_events, validity_events
+from groove_model.tracing.certification import CERTIFY_OPTIONS, certified_events
+
+pytest.importorskip("flint")
+
+
+@pytest.fixture(scope="module", params=[1.0, 10.0])
+def certified(request):
+    return trace_boundaries(request.param, certify=True)
+
+
+def test_every_boundary_is_proven(certified):
+    assert certified.ok
+    for name, curve in certified.curves.items():
+        cert = curve.certificate
+        assert cert.proven and curve.certified, (name, cert.message)
+        assert cert.node_distance <= 1e-9 and 0 < cert.max_radius < 0.05
+        # every special point the boundary reports inside is one the certificate proved
+        proven = {p.index for p in cert.special_points if p.reported}
+        assert len(proven) >= sum(1 for p in curve.special_points
+                                  if p.kind.value.startswith("fold"))
+        for p in cert.special_points:
+            assert p.radius <= 1e-5 and p.distance <= 1e-5
+
+
+def test_what_is_not_covered_is_stated(certified):
+    for name, curve in certified.curves.items():
+        excluded = curve.certificate.excluded
+        if curve.end.value == "corner":
+            assert [e.radius for e in excluded] == [0.0]  # nothing excluded at the corner
+        if curve.end.value == "gamma_min":
+            assert len(excluded) == 1 and excluded[0].radius < 2e-3
+            assert "origin" in excluded[0].note
+
+
+def test_the_csv_says_certified(certified, tmp_path):
+    frame = certified.to_frame()
+    assert frame["certified"].map(lambda v: v is True).all()
+    assert trace_boundaries(2.0).to_frame()["certified"].isna().all()
+
+
+def _engine(k, name):
+    """An engine curve of the tracer with its system and certified events."""
+    params = Parameters(k)
+    curve = trace_boundaries(k).curves[name]
+    if name.endswith("limit"):
+        system = BoundarySystem("dr_limit", params, "sqrt_beta_L", min(1.0, params.gamma_limit),
+                                conditioned=True)
+    else:
+        system = BoundarySystem(name, params, "sqrt_beta_L", conditioned=name == "dr_no_roll")
+    tagged = [*domain_events(system, min(1e-3, 0.01 * params.gamma_limit)),
+              *validity_events(system)]
+    events = certified_events(tagged)
+    if name.endswith("limit"):
+        events.append(Event("upsilon = 0", lambda y, numbers=FLOATS: y[3]))
+    return curve.engine[0], system, events
+
+
+def _rows(curve, rows):
+    rows = list(rows)
+    where = {r: i for i, r in enumerate(rows)}
+    points = tuple(dataclasses.replace(p, index=where[p.index]) for p in curve.special_points
+                   if p.index in where)
+    return dataclasses.replace(curve, x=curve.x[rows].copy(), s=curve.s[rows],
+                               tangents=curve.tangents[rows], ds=curve.ds[rows],
+                               newton_iterations=curve.newton_iterations[rows],
+                               residuals=curve.residuals[rows], special_points=points)
+
+
+def test_a_point_moved_off_the_boundary_by_1e_6_is_rejected():
+    engine, system, events = _engine(1.0, "dr_limit")
+    wrong = _rows(engine, range(len(engine)))
+    wrong.x[10, 2] += 1e-6
+    cert = certify(wrong, system, events, options=CERTIFY_OPTIONS)
+    assert not cert.proven and cert.check is Check.POINT and cert.point == 10, cert.message
+
+
+def test_a_fold_removed_with_the_points_around_it_is_rejected():
+    engine, system, events = _engine(1.0, "rs_no_roll")
+    fold = next(p.index for p in engine.special_points if p.kind is SpecialKind.FOLD)
+    rows = [i for i in range(len(engine)) if abs(i - fold) > 1]
+    cert = certify(_rows(engine, rows), system, events, options=CERTIFY_OPTIONS)
+    assert not cert.proven and cert.check in (Check.FOLD, Check.TUBE), cert.message
+    assert cert.segment == fold - 2, cert.message
+
+
+def test_a_skipped_junction_is_rejected():
+    engine, system, events = _engine(10.0, "dr_limit")
+    junction = next(p.index for p in engine.special_points
+                    if p.kind is SpecialKind.EVENT and events[p.event].name == "upsilon = 0")
+    rows = [i for i in range(len(engine)) if i != junction]
+    cert = certify(_rows(engine, rows), system, events, options=CERTIFY_OPTIONS)
+    assert not cert.proven and cert.check is Check.EVENT, cert.message
+    assert cert.segment == junction - 1 and "upsilon = 0" in cert.message
+
+
+def test_the_symmetric_family_spliced_to_dr_no_roll_is_rejected_at_the_splice():
+    """Both are zeros of the paper's no-roll system, which they share at its branch point."""
+    engine, _, _ = _engine(10.0, "dr_no_roll")
+    paper = BoundarySystem("dr_no_roll", Parameters(10.0), "sqrt_beta_L")
+    gamma_b = float(dr_no_roll_branch_point()[0])
+    gammas = np.linspace(0.8, gamma_b - 0.01, 8)
+    w = np.sqrt(0.5 * math.pi - gammas)
+    family = np.column_stack([gammas, 0 * gammas, w, 0 * gammas])
+    tangent = np.column_stack([1 + 0 * w, 0 * w, -0.5 / w, 0 * w])
+    tangent /= np.linalg.norm(tangent, axis=1)[:, None]
+    x = np.vstack([family, engine.x[1:10]])
+    t = np.vstack([tangent, engine.tangents[1:10]])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    spliced = dataclasses.replace(engine, x=x, tangents=t, s=s, ds=np.diff(s, prepend=0.0),
+                                  newton_iterations=np.zeros(len(x), int),
+                                  residuals=np.zeros(len(x)), special_points=())
+    assert np.max(np.abs([paper.residual(xi) for xi in x])) < 1e-10
+    cert = certify(spliced, paper, fold_coordinates=(), options=CERTIFY_OPTIONS)
+    assert not cert.proven and cert.segment == len(family) - 1, cert.message
+
+
+def test_groove_trace_certify_prints_a_line_per_boundary(tmp_path, capsys):
+    from groove_model.cli import main
+
+    assert main(["trace", "-k", "1", "--out", str(tmp_path), "--no-figure", "--certify"]) == 0
+    out = capsys.readouterr().out
+    for name in ("dr_limit", "rs_limit", "rs_no_roll"):
+        assert f"  {name}: proven: " in out
+    assert "excluded: no neighbourhood of the corner" in out
+    assert (tmp_path / "boundaries_k1.csv").read_text().splitlines()[1].endswith(",True")
+
+
+def test_groove_trace_certify_fails_loudly_when_not_proven(tmp_path, capsys, monkeypatch):
+    from continuation.certification import Certificate
+    from groove_model.cli import main
+    from groove_model.tracing import tracer
+
+    def refuse(curves, traced, gamma_min):
+        return {name: dataclasses.replace(curve, certificate=Certificate(
+            False, "not proven: tube: segment 3: test", Check.TUBE, 3))
+            for name, curve in curves.items()}
+
+    monkeypatch.setattr(tracer, "certify_boundaries", refuse)
+    assert main(["trace", "-k", "1", "--out", str(tmp_path), "--no-figure", "--certify"]) == 1
+    err = capsys.readouterr().err
+    assert "rs_no_roll: not proven: tube: segment 3: test" in err
+    assert "not proven: dr_limit, rs_limit, rs_no_roll" in err
+    assert (tmp_path / "boundaries_k1.csv").read_text().splitlines()[1].endswith(",False")
+
+
+def test_groove_trace_certify_without_python_flint_is_a_usage_error(tmp_path, capsys,
+                                                                     monkeypatch):
+    import continuation.numbers
+    from groove_model.cli import main
+
+    def missing():
+        raise ImportError("certification needs python-flint: pip install "
+                          "'groove-continuation[certify]'")
+
+    monkeypatch.setattr(continuation.numbers, "require_flint", missing)
+    with pytest.raises(SystemExit) as exit_:
+        main(["trace", "-k", "1", "--out", str(tmp_path), "--certify"])
+    assert exit_.value.code == 2
+    assert "groove-continuation[certify]" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())
