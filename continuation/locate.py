@@ -60,6 +60,10 @@ APPROACH = 0.5
 #: a split point is kept this far (as a fraction) from the ends of its interval
 SPLIT_MARGIN = 0.01
 
+#: an event is clear of zero on a step when its cubic model provably stays above this
+#: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
+CLEAR = APPROACH + 0.1 * (1.0 - APPROACH)
+
 #: most nodes a step may need before its scan is declared unresolvable
 MAX_NODES = 200
 
@@ -289,12 +293,34 @@ class StepScan:
     def event_brackets(self, j: int, direction: int = 0) -> list[tuple[Node, Node, float, float]]:
         """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step."""
 
+        if len(self.nodes) == 2 and self._clear(j):
+            return []
+
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
             return _cubic(lo.events[j], width * self.slope(lo, j),
                           hi.events[j], width * self.slope(hi, j))
 
         return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes))
+
+    def _clear(self, j: int) -> bool:
+        """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero.
+
+        The cubic Hermite model is ``P = f_a h00 + f_b h01 + m_a h10 + m_b h11`` with
+        ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on ``[0, 1]``, so
+        for end values of one sign ``|P| >= min(|f_a|, |f_b|) - (4/27)(|m_a| + |m_b|)``. When
+        that stays above ``CLEAR`` times the smaller end value, the full scan would find no
+        sign change and no extremum within ``APPROACH`` of zero: it brackets nothing, and this
+        test says so without building the model (the common case on most steps).
+        """
+        a, b = self.nodes
+        f_a, f_b = a.events[j], b.events[j]
+        if not ((f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)):
+            return False
+        smaller = min(abs(f_a), abs(f_b))
+        width = b.s - a.s
+        return (4.0 / 27.0) * width * (abs(self.slope(a, j)) + abs(self.slope(b, j))) \
+            <= (1.0 - CLEAR) * smaller
 
     def add(self, node: Node) -> None:
         """Insert a located curve point (e.g. a terminal event) as a node of the step."""
