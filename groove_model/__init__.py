@@ -55,6 +55,7 @@ _SOURCES = {
     "regime_validity": "model.equilibrium",
     "solve_equilibrium": "model.equilibrium",
     "trace_boundaries": "tracing.tracer",
+    "trace_many": "tracing.sweep",
     "BoundarySet": "tracing.curves",
 }
 

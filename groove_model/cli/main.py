@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import logging
 
-from . import audit, plot, reproduce, solve, trace
+from . import audit, plot, reproduce, solve, sweep, trace
 from . import map as regime_map
 from .common import EXIT_FAILED, EXIT_USAGE, UsageError
 
@@ -34,7 +34,7 @@ def build_parser() -> argparse.ArgumentParser:
         epilog=_EXAMPLES, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for command in (solve, trace, plot, regime_map, audit):
+    for command in (solve, trace, plot, regime_map, audit, sweep):
         command.add_parser(sub)
     reproduce.add_parser(sub, parser)
     return parser
