@@ -210,6 +210,15 @@ def _into_domain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return x, outside
 
 
+def _largest_scaled_residual(system: BoundarySystem, x: np.ndarray) -> float:
+    """``max`` over the rows of :meth:`BoundarySystem.scaled_residual`, the equations'
+    scales computed once for the whole curve (the same numbers, row by row)."""
+    if not len(x):
+        return 0.0
+    residuals = np.array([system.residual(xi) for xi in x])
+    return float(np.max(np.abs(residuals) / system.row_scales))
+
+
 def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagged],
               keep_unphysical: bool, start: Where, start_note: str,
               junctions=()) -> BoundaryCurve:
@@ -258,7 +267,7 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     # Check the reported points in the x form of the paper's equations (the form written to CSV),
     # each equation relative to the size of its terms.
     in_x = BoundarySystem(name, system.params)
-    residual = max((in_x.scaled_residual(xi) for xi in x[keep]), default=0.0)
+    residual = _largest_scaled_residual(in_x, x[keep])
     status = curve.status.value if curve.ok else curve.message
     ok = curve.ok
     if ok and np.any(outside[keep]):
