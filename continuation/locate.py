@@ -379,8 +379,29 @@ class StepScan:
             return (t_lo, 6.0 * chord - 4.0 * t_lo - 2.0 * t_hi,
                     -6.0 * chord + 3.0 * t_lo + 3.0 * t_hi, 0.0)
 
+        if end is None and len(self.nodes) == 2 and self._fold_clear(i):
+            return []
         nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
         return self._brackets(value, model, 0, nodes)
+
+    def _fold_clear(self, i: int) -> bool:
+        """Whether ``t_i``'s model on the whole step provably neither crosses nor nears zero.
+
+        The model is the derivative of the cubic Hermite arc of ``x_i``,
+        ``P(u) = (1 - u) t_a + u t_b + c_2 (u^2 - u)`` with ``|u^2 - u| <= 1/4`` on ``[0, 1]``,
+        so for end values of one sign ``|P| >= min(|t_a|, |t_b|) - |c_2| / 4``; as for
+        events (:meth:`_clear`), the full scan would bracket nothing when that stays above
+        ``CLEAR`` times the smaller end value. Not at a singular start (``det = 0``).
+        """
+        a, b = self.nodes
+        if a.det == 0.0 or b.det == 0.0:
+            return False
+        t_a, t_b = float(a.tangent[i]), float(b.tangent[i])
+        if not ((t_a > 0.0 and t_b > 0.0) or (t_a < 0.0 and t_b < 0.0)):
+            return False
+        chord = (b.x[i] - a.x[i]) / (b.s - a.s)
+        c_2 = -6.0 * chord + 3.0 * t_a + 3.0 * t_b
+        return 0.25 * abs(c_2) <= (1.0 - CLEAR) * min(abs(t_a), abs(t_b))
 
     def _brackets(self, value, model, direction: int, nodes=None):
         nodes = self.nodes if nodes is None else nodes

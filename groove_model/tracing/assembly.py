@@ -72,7 +72,10 @@ def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
     half_pi = 0.5 * math.pi
 
     def unit(*entries):
-        return lambda y: np.array(entries, dtype=float)
+        # one constant array for every point (the engine only reads it)
+        gradient = np.array(entries, dtype=float)
+        gradient.flags.writeable = False
+        return lambda y: gradient
 
     return [
         _edge("delta = 0", Role.DOMAIN_EDGE, lambda y: y[1], unit(0, 1, 0, 0)),
