@@ -15,6 +15,7 @@ tests.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import logging
 import platform
@@ -94,11 +95,17 @@ def main(argv=None) -> int:
     parser.add_argument("--quick", action="store_true",
                         help="fewer repeats and smaller grids (under a minute)")
     parser.add_argument("--json", type=Path, help="write the records to this JSON file")
+    parser.add_argument("--memory", type=int, metavar="N",
+                        help="measure the memory of one streamed sweep of N k instead "
+                             "(target 4 itself: N = 100000 takes about 30 min)")
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.ERROR)
     start = time.perf_counter()
     facts: dict = {}
-    records = build_records(QUICK if args.quick else FULL, facts)
+    config = QUICK if args.quick else FULL
+    if args.memory:
+        config = dataclasses.replace(config, memory_sizes=(args.memory,))
+    records = build_records(config, facts)
     targets = evaluate(records, facts.get("sweep"), facts.get("memory"), facts.get("startup"))
     print(markdown_table(records))
     print()
