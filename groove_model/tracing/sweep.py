@@ -213,6 +213,12 @@ def trace_many(ks: Iterable[float], jobs: int | None = None, *,
     ------
     SweepError
         If a ``k`` failed; it carries every result (``.results``), the failed ones included.
+
+    Notes
+    -----
+    As with any process pool, a script that calls this with ``jobs >= 2`` must run its top
+    level under ``if __name__ == "__main__":`` where processes are started by spawning
+    (Windows, macOS, and Linux from Python 3.14).
     """
     results = list(sweep_results(ks, jobs=jobs, executor=executor,
                                  keep_unphysical=keep_unphysical, options=options))
