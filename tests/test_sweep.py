@@ -9,8 +9,10 @@ points as tracing each k on its own, that ``groove sweep`` writes the same bytes
 import concurrent.futures
 import os
 import pty
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -241,3 +243,18 @@ def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
         os.close(controller)
     assert shown.returncode == 0
     assert b"\r[" in screen and b"2/2 k" in screen
+
+
+def test_a_terminated_sweep_leaves_no_file(tmp_path):
+    out = tmp_path / "out"
+    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
+                                "--k-max", "1e3", "-n", "400", "--jobs", "2", "--out",
+                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not (out.exists() and any(out.iterdir())) and time.monotonic() < deadline:
+        time.sleep(0.05)  # until the temporary files exist
+    process.send_signal(signal.SIGTERM)
+    process.communicate(timeout=120)
+    assert process.returncode == 128 + signal.SIGTERM
+    assert list(out.iterdir()) == []

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import signal
 import sys
+import threading
 import time
 
 import numpy as np
@@ -97,6 +100,24 @@ class Progress:
         self.stream.flush()
 
 
+@contextlib.contextmanager
+def _terminated_as_exit():
+    """SIGTERM raises ``SystemExit(143)`` meanwhile, so a killed sweep removes its temporary
+    files and stops its workers like an interrupted one (only in the main thread)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum, frame):
+        raise SystemExit(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
 def run(args) -> int:
     """Trace every ``k``; write the two files and return 0, or write nothing and return 1."""
     # Imported here, not at the top: the tracer and the CSV files load the engine and pandas,
@@ -109,7 +130,8 @@ def run(args) -> int:
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical)
-    paths, failed = write_sweep(results, out, progress=Progress(len(ks)))
+    with _terminated_as_exit():
+        paths, failed = write_sweep(results, out, progress=Progress(len(ks)))
     for result in failed:
         for failure in result.failures:
             print(f"groove sweep: error: k = {result.k!r}: {failure}", file=sys.stderr)
