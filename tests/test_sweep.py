@@ -249,7 +249,7 @@ def test_a_terminated_sweep_leaves_no_file(tmp_path):
     out = tmp_path / "out"
     code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
     process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
-                                "--k-max", "1e3", "-n", "400", "--jobs", "2", "--out",
+                                "--k-max", "1e3", "-n", "4000", "--jobs", "2", "--out",
                                 str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     deadline = time.monotonic() + 120
     while not (out.exists() and any(out.iterdir())) and time.monotonic() < deadline:

@@ -100,22 +100,39 @@ class Progress:
         self.stream.flush()
 
 
-@contextlib.contextmanager
-def _terminated_as_exit():
-    """SIGTERM raises ``SystemExit(143)`` meanwhile, so a killed sweep removes its temporary
-    files and stops its workers like an interrupted one (only in the main thread)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
+class _Termination:
+    """Turns SIGTERM into ``SystemExit(143)`` raised between two results of the sweep, so a
+    killed sweep removes its temporary files and stops its workers like an interrupted one.
 
-    def terminate(signum, frame):
-        raise SystemExit(128 + signum)
+    The handler only records the signal: an exception raised inside the process pool's own
+    bookkeeping (starting its threads and processes) could leave it unable to shut down.
+    """
 
-    previous = signal.signal(signal.SIGTERM, terminate)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
+    def __init__(self, progress: Progress) -> None:
+        self.progress = progress
+        self.signum = None
+
+    def __call__(self, result) -> None:
+        self.progress(result)
+        if self.signum is not None:
+            raise SystemExit(128 + self.signum)
+
+    @contextlib.contextmanager
+    def installed(self):
+        if threading.current_thread() is not threading.main_thread():
+            yield self  # signal handlers can only be set in the main thread
+            return
+
+        def record(signum, frame):
+            self.signum = signum
+
+        previous = signal.signal(signal.SIGTERM, record)
+        try:
+            yield self
+        finally:
+            signal.signal(signal.SIGTERM, previous)
+        if self.signum is not None:
+            raise SystemExit(128 + self.signum)
 
 
 def run(args) -> int:
@@ -130,8 +147,8 @@ def run(args) -> int:
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical)
-    with _terminated_as_exit():
-        paths, failed = write_sweep(results, out, progress=Progress(len(ks)))
+    with _Termination(Progress(len(ks))).installed() as progress:
+        paths, failed = write_sweep(results, out, progress=progress)
     for result in failed:
         for failure in result.failures:
             print(f"groove sweep: error: k = {result.k!r}: {failure}", file=sys.stderr)
