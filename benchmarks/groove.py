@@ -66,6 +66,36 @@ def _ours_fold_error(boundary_set) -> tuple[float | None, int]:
     return worst, count
 
 
+def _chart_scale(name: str, params) -> float:
+    """The tracer's unit of gamma and delta in its chart: ``min(1, arctan(k/c))`` for the
+    limit curves, 1 for the others (``groove_model.tracing.tracer``)."""
+    return min(1.0, params.gamma_limit) if name.endswith("limit") else 1.0
+
+
+def _junction_error(boundary_set) -> float | None:
+    """Largest distance of a reported junction to an independent Newton solve of
+    ``dr_limit`` and ``upsilon = 0`` in the paper's form (``None`` if there is none)."""
+    from groove_model.model.boundaries import BoundarySystem
+
+    params = boundary_set.params
+    system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
+    worst = None
+    for name in ("dr_limit", "dr_no_roll", "rs_no_roll"):
+        curve = boundary_set.curves.get(name)
+        for point in (curve.special("junction") if curve is not None else ()):
+            y = system.from_x(point.x)
+            for _ in range(30):
+                H, J = system.residual_and_jacobian(y)
+                step = np.linalg.solve(np.vstack([J, [0.0, 0.0, 0.0, 1.0]]),
+                                       np.append(H, y[3]))
+                y = y - step
+                if np.max(np.abs(step)) <= 1e-15 * (1.0 + np.max(np.abs(y))):
+                    break
+            error = float(np.max(np.abs(system.to_x(y) - point.x)))
+            worst = error if worst is None else max(worst, error)
+    return worst
+
+
 def _params(k):
     from groove_model.model.parameters import Parameters
 
@@ -83,7 +113,11 @@ def _ours(problem: str, ks, repeats: int) -> Record:
     residual = 0.0
     ok = True
     worst, folds = None, 0
+    junction = None
     for boundary_set in sets:
+        error = _junction_error(boundary_set)
+        if error is not None:
+            junction = error if junction is None else max(junction, error)
         ok &= boundary_set.ok
         for curve in boundary_set.curves.values():
             engine = curve.engine[0]
@@ -97,11 +131,16 @@ def _ours(problem: str, ks, repeats: int) -> Record:
         if error is not None:
             worst = error if worst is None else max(worst, error)
     ok &= worst is None or worst <= 1e-10
+    ok &= junction is None or junction <= 1e-10
+    failed = [b.k for b in sets if not b.ok]
     return Record(problem, "ours", wall, points, residual_evals, jacobian_evals, residual, worst,
                   bool(ok),
                   f"all boundaries and special points of {len(ks)} k; {folds} folds in gamma "
-                  f"checked against an independent solve of the fold system; {kept} physical "
-                  "points kept; counts are the engine's (the tracer's own checks not counted)")
+                  f"checked against an independent solve of the fold system; junction error "
+                  f"{'-' if junction is None else f'{junction:.2e}'} (against an independent "
+                  f"solve of dr_limit and upsilon = 0); {kept} physical points kept; "
+                  f"{len(failed)} k failed{f' ({failed[:5]})' if failed else ''}; counts are "
+                  "the engine's (the tracer's own checks not counted)")
 
 
 # --------------------------------------------------------------------------- reference
@@ -123,7 +162,9 @@ def _reference(ks, samples: int = 128):
         pieces = []
         for curve in boundary_set.curves.values():
             engine = curve.engine[0]
-            x, t = engine.x[:, :2], engine.tangents[:, :2]
+            # the engine's chart has gamma and delta in units of _chart_scale
+            scale = _chart_scale(curve.name, boundary_set.params)
+            x, t = scale * engine.x[:, :2], scale * engine.tangents[:, :2]
             h = np.diff(engine.s)[None, :, None]
             arcs = (basis[0] * x[:-1] + basis[1] * h * t[:-1] + basis[2] * x[1:]
                     + basis[3] * h * t[1:])
@@ -191,11 +232,13 @@ def _error_at_gamma(xs: np.ndarray, boundary) -> float:
     from groove_model.model.boundaries import BoundarySystem
 
     engine = boundary.engine[0]
-    system = BoundarySystem(boundary.name, _params(boundary.k), "sqrt_beta_L")
+    params = _params(boundary.k)
+    scale = _chart_scale(boundary.name, params)
+    system = BoundarySystem(boundary.name, params, "sqrt_beta_L", scale)
     worst = 0.0
     for x in xs[1:]:
         try:
-            found = engine.point_where(0, float(x[0]))
+            found = engine.point_where(0, float(x[0]) / scale)
         except ValueError:
             continue
         candidates = found if isinstance(found, list) else [found]

@@ -94,8 +94,8 @@ def markdown_table(records: list[Record]) -> str:
         wall = f"{1e3 * r.wall_s:.3g}" if r.wall_s is not None else "-"
         ratio = (f"{r.wall_s / ours[r.problem]:.3g}" if r.wall_s is not None
                  and r.problem in ours else "-")
-        per_point = (f"{(r.residual_evals + r.jacobian_evals) / r.points:.2f}"
-                     if r.points else "-")
+        counted = r.residual_evals + r.jacobian_evals
+        per_point = f"{counted / r.points:.2f}" if r.points and counted else "-"
         lines.append(f"| {r.problem} | {r.tool} | {wall} | {ratio} | {r.points} | "
                      f"{r.residual_evals} | {r.jacobian_evals} | {per_point} | "
                      f"{_number(r.max_residual)} | {_number(r.fold_error)} | "

@@ -255,7 +255,7 @@ def _solve(factors, rhs: np.ndarray, H: np.ndarray, border: np.ndarray, target: 
            x: np.ndarray) -> np.ndarray:
     """The Newton correction ``dx`` of the bordered system at ``x``."""
     n = rhs.size - 1
-    rhs[:n] = -H
+    np.negative(H, out=rhs[:n])
     rhs[n] = target - float(border @ x)
     return lu_solve(factors, rhs)
 

@@ -29,8 +29,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .numbers import FLOATS, Jet, jets
 
 __all__ = ["Failure", "Frame", "Piece", "Slice", "determinant", "kernel", "inverse",
@@ -136,7 +134,7 @@ class Frame:
     coefficients: list
 
     @classmethod
-    def build(cls, x_a, t_a, x_b, t_b) -> "Frame | str":
+    def build(cls, x_a, t_a, x_b, t_b) -> Frame | str:
         """The frame of the segment; a message if a tangent does not point along the chord."""
         x_a, x_b = [float(v) for v in x_a], [float(v) for v in x_b]
         t_a, t_b = [float(v) for v in t_a], [float(v) for v in t_b]
@@ -164,7 +162,7 @@ class Frame:
         return cls(x_a, v, p, axes, length, [[0.0] * len(axes), m_a, a2, a3])
 
     @classmethod
-    def _short(cls, x_a, t_a, t_b, d) -> "Frame | str":
+    def _short(cls, x_a, t_a, t_b, d) -> Frame | str:
         """The frame of a segment too short for its chord's direction to be known (its points
         are only known to rounding): along the mean tangent, the centerline a straight line
         to the second point (the curve is off it by ``kappa L^2``)."""

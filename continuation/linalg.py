@@ -80,9 +80,10 @@ def lu_determinant(lu: np.ndarray, piv: np.ndarray) -> float:
     """Determinant from an LU factorisation ``P A = L U`` (LAPACK pivots, 0-based)."""
     det = 1.0
     swaps = 0
-    for i in range(piv.size):
-        det *= lu[i, i]
-        swaps += piv[i] != i
+    # on Python floats and ints: indexing numpy scalars one by one costs more than the product
+    for i, (diagonal, pivot) in enumerate(zip(lu.diagonal().tolist(), piv.tolist())):
+        det *= diagonal
+        swaps += pivot != i
     return float(-det if swaps % 2 else det)
 
 

@@ -61,6 +61,10 @@ APPROACH = 0.5
 #: a split point is kept this far (as a fraction) from the ends of its interval
 SPLIT_MARGIN = 0.01
 
+#: an event is clear of zero on a step when its cubic model provably stays above this
+#: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
+CLEAR = APPROACH + 0.1 * (1.0 - APPROACH)
+
 #: most nodes a step may need before its scan is declared unresolvable
 MAX_NODES = 200
 
@@ -290,12 +294,34 @@ class StepScan:
     def event_brackets(self, j: int, direction: int = 0) -> list[tuple[Node, Node, float, float]]:
         """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step."""
 
+        if len(self.nodes) == 2 and self._clear(j):
+            return []
+
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
             return _cubic(lo.events[j], width * self.slope(lo, j),
                           hi.events[j], width * self.slope(hi, j))
 
         return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes))
+
+    def _clear(self, j: int) -> bool:
+        """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero.
+
+        The cubic Hermite model is ``P = f_a h00 + f_b h01 + m_a h10 + m_b h11`` with
+        ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on ``[0, 1]``, so
+        for end values of one sign ``|P| >= min(|f_a|, |f_b|) - (4/27)(|m_a| + |m_b|)``. When
+        that stays above ``CLEAR`` times the smaller end value, the full scan would find no
+        sign change and no extremum within ``APPROACH`` of zero: it brackets nothing, and this
+        test says so without building the model (the common case on most steps).
+        """
+        a, b = self.nodes
+        f_a, f_b = a.events[j], b.events[j]
+        if not ((f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)):
+            return False
+        smaller = min(abs(f_a), abs(f_b))
+        width = b.s - a.s
+        return (4.0 / 27.0) * width * (abs(self.slope(a, j)) + abs(self.slope(b, j))) \
+            <= (1.0 - CLEAR) * smaller
 
     def add(self, node: Node) -> None:
         """Insert a located curve point (e.g. a terminal event) as a node of the step."""
@@ -354,8 +380,29 @@ class StepScan:
             return (t_lo, 6.0 * chord - 4.0 * t_lo - 2.0 * t_hi,
                     -6.0 * chord + 3.0 * t_lo + 3.0 * t_hi, 0.0)
 
+        if end is None and len(self.nodes) == 2 and self._fold_clear(i):
+            return []
         nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
         return self._brackets(value, model, 0, nodes)
+
+    def _fold_clear(self, i: int) -> bool:
+        """Whether ``t_i``'s model on the whole step provably neither crosses nor nears zero.
+
+        The model is the derivative of the cubic Hermite arc of ``x_i``,
+        ``P(u) = (1 - u) t_a + u t_b + c_2 (u^2 - u)`` with ``|u^2 - u| <= 1/4`` on ``[0, 1]``,
+        so for end values of one sign ``|P| >= min(|t_a|, |t_b|) - |c_2| / 4``; as for
+        events (:meth:`_clear`), the full scan would bracket nothing when that stays above
+        ``CLEAR`` times the smaller end value. Not at a singular start (``det = 0``).
+        """
+        a, b = self.nodes
+        if a.det == 0.0 or b.det == 0.0:
+            return False
+        t_a, t_b = float(a.tangent[i]), float(b.tangent[i])
+        if not ((t_a > 0.0 and t_b > 0.0) or (t_a < 0.0 and t_b < 0.0)):
+            return False
+        chord = (b.x[i] - a.x[i]) / (b.s - a.s)
+        c_2 = -6.0 * chord + 3.0 * t_a + 3.0 * t_b
+        return 0.25 * abs(c_2) <= (1.0 - CLEAR) * min(abs(t_a), abs(t_b))
 
     def _brackets(self, value, model, direction: int, nodes=None):
         nodes = self.nodes if nodes is None else nodes

@@ -201,7 +201,11 @@ def trace(
     Special points in each accepted step ``(x_a, x_b]``: event zeros, folds
     (sign changes of ``t_i``) and simple branch points (sign changes of
     ``det [H'; t^T]``, Allgower & Georg, sec. 8.1) are located by
-    :func:`continuation.events.locate_zero` and inserted into the curve.
+    :func:`continuation.events.locate_zero` and inserted into the curve. The zeros of
+    terminal events are located first, the simplest-looking first: once the curve's end in a
+    step is known, a bracket beyond it is dropped and one that contains it is cut at it if
+    the event has changed sign there (dropped otherwise), so that a multiple zero at the
+    same end (e.g. a curve ending where it also touches a box edge) costs no bisections.
     """
     return follow(problem, x0, direction, options, events, tangent)
 
@@ -570,24 +574,31 @@ def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
     found: list[_Found] = []
     what = "a special point"
     try:
-        for j, event in enumerate(run.events):
+        brackets = [(j, bracket) for j, event in enumerate(run.events)
+                    for bracket in scan.event_brackets(j, event.direction)]
+        end = None  # where the curve ends: the first terminal zero located so far
+        for j, (lo, hi, f_lo, f_hi) in sorted(brackets, key=lambda item: _locate_order(
+                run.events[item[0]], item[0], *item[1])):
+            event = run.events[j]
             what = f"event '{event.name}'"
-            for lo, hi, f_lo, f_hi in scan.event_brackets(j, event.direction):
-                located = locate_zero(evaluator, options,
-                                      lambda c, e=event: event_value(e, c.x, describe),
-                                      lo, hi, f_lo, f_hi, False)
-                found.append(_Found(located, SpecialKind.EVENT, event.name, None, event.terminal,
-                                    j))
+            if end is not None and hi.s > end.s:
+                # the curve ends inside this bracket: only a zero before the end matters,
+                # and there is one exactly when the event has changed sign at the end
+                if lo.s >= end.s:
+                    continue
+                f_end = end.events[j]
+                if f_end != 0.0 and (f_end > 0.0) == (f_lo > 0.0):
+                    continue
+                hi, f_hi = end, f_end
+            located = locate_zero(evaluator, options,
+                                  lambda c, e=event: event_value(e, c.x, describe),
+                                  lo, hi, f_lo, f_hi, False)
+            found.append(_Found(located, SpecialKind.EVENT, event.name, None, event.terminal, j))
+            if event.terminal and (end is None or located.s < end.s):
+                end = _located_node(run, located)
+        # the order along the step, events at one point in the order of the run's events
+        found.sort(key=lambda item: (item.located.s, item.event))
         # folds only up to the first terminal event, where the curve ends
-        found.sort(key=lambda item: item.located.s)
-        terminal = next((item for item in found if item.terminal), None)
-        end = None
-        if terminal is not None and terminal.located.node is None:
-            c = cast(Correction, terminal.located.correction)
-            end = Node(c.x, terminal.located.s, c.tangent, c.det, c.residual, c.iterations,
-                       [event_value(e, c.x, describe) for e in run.events])
-        elif terminal is not None:
-            end = terminal.located.node
         for i in options.fold_coordinates:
             name = f"fold {run.problem.coordinate_name(i)}"
             what = f"'{name}'"
@@ -618,6 +629,34 @@ def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
 
 def _located_x(located: Located) -> np.ndarray:
     return located.node.x if located.node is not None else located.correction.x
+
+
+def _locate_order(event: Event, j: int, lo: Node, hi: Node, f_lo: float, f_hi: float):
+    """The order in which the step's event brackets are located: terminal events first,
+    those whose zero looks simple (end slopes that match the secant, ``rate`` near 1) before
+    those that look multiple (a triple zero has ``rate`` near 3), then by position.
+
+    Any order gives the same zeros before the curve's end; this one locates the zero where the
+    curve ends cheaply first, so that a bracket beyond it is dropped and one that contains
+    it is cut at it (a multiple zero costs Brent's method tens of bisections).
+    """
+    if not event.terminal:
+        return (1, 0.0, lo.s, j)
+    rate = math.inf
+    if lo.slopes is not None and hi.slopes is not None and f_hi != f_lo:
+        m_lo, m_hi = lo.slopes[j], hi.slopes[j]
+        if m_lo is not None and m_hi is not None:
+            rate = 0.5 * (hi.s - lo.s) * (abs(m_lo) + abs(m_hi)) / abs(f_hi - f_lo)
+    return (0, abs(math.log(rate)) if 0.0 < rate < math.inf else math.inf, lo.s, j)
+
+
+def _located_node(run: _Run, located: Located) -> Node:
+    """A located point as a node with its event values (a bracket's end, or a new node)."""
+    if located.node is not None:
+        return located.node
+    c = located.correction
+    return Node(c.x, located.s, c.tangent, c.det, c.residual, c.iterations,
+                [event_value(e, c.x, run.problem.describe) for e in run.events])
 
 
 def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint | None:

@@ -59,6 +59,7 @@ _SOURCES = {
     "regime_validity": "model.equilibrium",
     "solve_equilibrium": "model.equilibrium",
     "trace_boundaries": "tracing.tracer",
+    "trace_many": "tracing.sweep",
     "BoundarySet": "tracing.curves",
     "Atlas": "tracing.atlas",
     "trace_atlas": "tracing.atlas",

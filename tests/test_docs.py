@@ -149,7 +149,7 @@ def test_the_guide_documents_every_command():
                 if c.startswith("groove ") and not c.startswith("groove --")}
     parser = build_parser()
     available = set(parser._subparsers._group_actions[0].choices)
-    assert available <= commands | {"sweep"}
+    assert available <= commands
 
 
 @pytest.mark.parametrize("path", DOCUMENTS, ids=lambda p: p.name)

@@ -12,7 +12,7 @@ import os
 import sys
 
 from .. import __version__
-from . import atlas, audit, compliance, plot, reproduce, solve, trace
+from . import atlas, audit, compliance, plot, reproduce, solve, sweep, trace
 from . import map as regime_map
 from .common import EXIT_FAILED, EXIT_USAGE, UsageError, add_verbose
 
@@ -42,7 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
                         version=f"%(prog)s {__version__} (groove-continuation)")
     add_verbose(parser)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for command in (solve, trace, plot, regime_map, audit, atlas, compliance):
+    for command in (solve, trace, plot, regime_map, audit, sweep, atlas, compliance):
         command.add_parser(sub)
     reproduce.add_parser(sub, parser)
     return parser

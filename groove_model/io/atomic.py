@@ -16,7 +16,7 @@ import secrets
 import socket
 from pathlib import Path
 
-__all__ = ["atomic_write", "remove_stale_temporaries"]
+__all__ = ["atomic_write", "commit_temporary", "create_temporary", "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
 
@@ -102,8 +102,9 @@ def remove_stale_temporaries(directory) -> list[Path]:
     return removed
 
 
-def _create_temporary(path: Path) -> Path:
-    """Create an empty temporary file for ``path`` (mode ``0o666`` less the umask)."""
+def create_temporary(path: Path) -> Path:
+    """Create an empty temporary file for ``path`` (mode ``0o666`` less the umask), named so
+    that :func:`remove_stale_temporaries` can tell when its writer is gone."""
     # a long stem is cut so that the name stays within the usual 255-byte limit
     prefix = f".{path.stem[:120]}.partial-{os.getpid()}@{_owner()}."
     while True:
@@ -164,13 +165,22 @@ def atomic_write(path, write) -> Path:
     """
     path = Path(path)
     remove_stale_temporaries(path.parent)
-    tmp = _create_temporary(path)
+    tmp = create_temporary(path)
     try:
         write(tmp)
-        _sync_file(tmp)
-        os.replace(tmp, path)
+        commit_temporary(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise
-    _sync_directory(path.parent)
     return path
+
+
+def commit_temporary(tmp: Path, path: Path) -> None:
+    """Sync the finished temporary file ``tmp`` to disk, move it to ``path`` and sync the
+    directory, so that neither a killed process nor a power loss leaves a truncated ``path``.
+
+    For writers that fill a file of :func:`create_temporary` themselves (e.g. a stream).
+    """
+    _sync_file(tmp)
+    os.replace(tmp, path)
+    _sync_directory(path.parent)

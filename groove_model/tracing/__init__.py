@@ -1,7 +1,8 @@
 """Tracing the regime boundaries: the tracer, what it returns, and the topology it checks.
 
 :func:`trace_boundaries` follows every boundary of one ``k`` with the continuation engine and
-returns a :class:`BoundarySet`; :func:`~groove_model.tracing.topology.expected_topology` says
+returns a :class:`BoundarySet`; :func:`trace_many` does it for many ``k`` (in parallel with
+``jobs`` or on any ``concurrent.futures`` executor) and returns one table; :func:`~groove_model.tracing.topology.expected_topology` says
 what each boundary must look like for that ``k``.
 """
 
@@ -16,6 +17,7 @@ from .curves import (
     Where,
     boundary_quantities,
 )
+from .sweep import SweepError, SweepResult, sweep_results, trace_many
 from .tracer import DEFAULT_OPTIONS, trace_boundaries
 
 __all__ = [
@@ -26,8 +28,12 @@ __all__ = [
     "BoundarySet",
     "BoundarySpecialPoint",
     "PointKind",
+    "SweepError",
+    "SweepResult",
     "TraceError",
     "Where",
     "boundary_quantities",
+    "sweep_results",
     "trace_boundaries",
+    "trace_many",
 ]

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 import numpy as np
 
@@ -21,7 +21,7 @@ from continuation import Curve, Event, Options, Problem, SpecialKind, trace
 from continuation.numbers import FLOATS
 
 from ..model.boundaries import BoundarySystem, Condition, corner_point
-from .curves import BoundaryCurve, BoundarySpecialPoint, PointKind, Where, POINT_ORDER
+from .curves import POINT_ORDER, BoundaryCurve, BoundarySpecialPoint, PointKind, Where
 
 __all__ = ["DOMAIN_TOLERANCE", "Role", "Tagged", "assemble", "domain_events", "trace_curve",
            "validity_events"]
@@ -91,7 +91,10 @@ def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
     low = gamma_min / g
 
     def unit(*entries):
-        return lambda y: np.array(entries, dtype=float)
+        # one constant array for every point (the engine only reads it)
+        gradient = np.array(entries, dtype=float)
+        gradient.flags.writeable = False
+        return lambda y: gradient
 
     if system.name.endswith("no_roll"):
         edge_gamma = (system.edge_function, None)
@@ -238,6 +241,15 @@ def _into_domain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return x, outside
 
 
+def _largest_scaled_residual(system: BoundarySystem, x: np.ndarray) -> float:
+    """``max`` over the rows of :meth:`BoundarySystem.scaled_residual`, the equations'
+    scales computed once for the whole curve (the same numbers, row by row)."""
+    if not len(x):
+        return 0.0
+    residuals = np.array([system.residual(xi) for xi in x])
+    return float(np.max(np.abs(residuals) / system.row_scales))
+
+
 def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagged],
               keep_unphysical: bool, start: Where, start_note: str,
               junctions=()) -> BoundaryCurve:
@@ -286,7 +298,7 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     # Check the reported points in the x form of the paper's equations (the form written to CSV),
     # each equation relative to the size of its terms.
     in_x = BoundarySystem(name, system.params)
-    residual = max((in_x.scaled_residual(xi) for xi in x[keep]), default=0.0)
+    residual = _largest_scaled_residual(in_x, x[keep])
     status = curve.status.value if curve.ok else curve.message
     ok = curve.ok
     if ok and np.any(outside[keep]):

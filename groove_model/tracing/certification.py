@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from continuation import Curve, Event
-from continuation.certification import Certificate, CertifyOptions, Exclusion, Check, certify
+from continuation.certification import Certificate, CertifyOptions, Check, Exclusion, certify
 
 from ..model.boundaries import corner_point
 from .curves import BoundaryCurve, Where

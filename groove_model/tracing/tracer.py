@@ -102,20 +102,21 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     """
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     worst = 0.0
-    for x in rs.x:
-        y = system.from_x(x)
+    # norms on Python floats (the same numbers as np.linalg.norm, a fraction of its overhead)
+    for x, y in zip(rs.x, system.from_x(rs.x)):
         for _ in range(20):
             H, J = system.residual_and_jacobian(y)
             _, _, multipliers, info = dgesv(J @ J.T, H)
-            if info != 0 or not np.all(np.isfinite(multipliers)):
+            if info != 0 or not math.isfinite(sum(multipliers.tolist())):
                 return math.nan  # rank-deficient: no distance is claimed
             step = J.T @ multipliers
             y = y - step
-            if float(np.linalg.norm(step)) <= 1e-8 * (1.0 + float(np.max(np.abs(y)))):
+            if math.sqrt(float(step @ step)) <= 1e-8 * (1.0 + max(map(abs, y.tolist()))):
                 break
         else:
             return math.nan  # not converged: no distance is claimed
-        worst = max(worst, float(np.linalg.norm(system.to_x(y) - x)))
+        error = system.to_x(y) - x
+        worst = max(worst, math.sqrt(float(error @ error)))
     return worst
 
 
@@ -197,6 +198,10 @@ def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
 #: the direction every boundary starts in: into delta > 0
 _UP = np.array([0.0, 1.0, 0.0, 0.0])
 
+#: the gradient of the event upsilon = 0 (read-only, shared by every point)
+_UPSILON = np.array([0.0, 0.0, 0.0, 1.0])
+_UPSILON.flags.writeable = False
+
 
 class _Job:
     """The settings of one call of :func:`trace_boundaries`, and its three traces."""
@@ -253,7 +258,7 @@ class _Job:
         system = BoundarySystem("dr_limit", params, "sqrt_beta_L", scale, conditioned=True)
         tagged = [*self._events(system),
                   Tagged(Event("upsilon = 0", lambda y, numbers=FLOATS: y[3],
-                               gradient=lambda y: np.array([0.0, 0.0, 0.0, 1.0])),
+                               gradient=lambda y: _UPSILON),
                          Role.NO_ROLL)]
         self.traced["dr_limit"] = self.traced["rs_limit"] = (system, tagged)
         engine = trace_curve(system, system.from_x(self.seed), _UP, self.options, tagged)

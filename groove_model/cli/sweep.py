@@ -1,0 +1,187 @@
+"""``groove sweep``: every boundary for many ``k``, in parallel, streamed to two CSV files."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import signal
+import sys
+import threading
+import time
+
+from .common import (
+    EXIT_FAILED,
+    EXIT_OK,
+    UsageError,
+    add_command,
+    add_compliance_options,
+    compliance_from,
+    compliance_label,
+    friction,
+    output_directory,
+)
+
+__all__ = ["Progress", "add_parser", "run", "sweep_values"]
+
+_EXAMPLES = """examples:
+  groove sweep --k-min 1e-2 --k-max 1e3 -n 200 --jobs 4 --out sweep/
+  groove sweep --k-min 0.5 --k-max 2 -n 11 --out out/ --keep-unphysical
+
+writes sweep_boundaries.csv (the rows of every k, with a k column, as in boundaries_k*.csv)
+and sweep_special_points.csv (the special points of every k) into --out; the bytes do not
+depend on --jobs. The k are log-spaced from --k-min to --k-max. Nothing is written if any k
+fails (exit code 1, the failures on stderr). A progress bar is shown on a terminal only.
+"""
+
+
+def _count(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"-n = {text!r} is outside the allowed range: an "
+                                         "integer >= 1")
+    return value
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"--jobs = {text!r} is outside the allowed range: an "
+                                         "integer >= 1")
+    return value
+
+
+def add_parser(subparsers):
+    """Register ``groove sweep``; returns its parser."""
+    p = add_command(
+        subparsers, "sweep",
+        help="trace every boundary for many log-spaced k, in parallel, into one CSV",
+        description="Trace every regime boundary (as groove trace does) for n values of k "
+                    "log-spaced from --k-min to --k-max, on --jobs processes, and stream the "
+                    "rows into one CSV in long format (a k column) plus one table of the "
+                    "special points of every k.",
+        examples=_EXAMPLES)
+    p.add_argument("--k-min", required=True, type=friction, help="smallest k (> 0)")
+    p.add_argument("--k-max", required=True, type=friction, help="largest k (>= --k-min)")
+    p.add_argument("-n", required=True, type=_count, help="number of k values (>= 1)")
+    p.add_argument("--jobs", type=_jobs, default=1,
+                   help="worker processes (default 1: in this process)")
+    p.add_argument("--out", required=True, help="output directory (created if needed)")
+    p.add_argument("--certify", action="store_true",
+                   help="prove every boundary in ball arithmetic (needs python-flint); a k "
+                        "with a boundary not proven fails")
+    add_compliance_options(p)
+    p.add_argument("--keep-unphysical", action="store_true",
+                   help="keep the parts of each boundary where its regime is not valid")
+    p.set_defaults(run=run)
+    return p
+
+
+def sweep_values(k_min: float, k_max: float, n: int) -> list:
+    """``n`` values log-spaced from ``k_min`` to ``k_max`` (both included)."""
+    # Imported here, not at the top: `groove --help` does not wait for numpy.
+    import numpy as np
+
+    return np.geomspace(k_min, k_max, n).tolist()
+
+
+class Progress:
+    """A one-line progress bar on ``stream``, drawn only if it is a terminal."""
+
+    def __init__(self, total: int, stream=None, width: int = 30) -> None:
+        self.stream = sys.stderr if stream is None else stream
+        self.total = total
+        self.width = width
+        self.done = 0
+        self.start = time.monotonic()
+        isatty = getattr(self.stream, "isatty", None)
+        self.active = bool(isatty and isatty())
+
+    def __call__(self, result=None) -> None:
+        self.done += 1
+        if not self.active:
+            return
+        filled = self.width * self.done // self.total
+        elapsed = time.monotonic() - self.start
+        self.stream.write(f"\r[{'#' * filled}{'.' * (self.width - filled)}] "
+                          f"{self.done}/{self.total} k, {elapsed:.0f} s")
+        if self.done == self.total:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+class _Termination:
+    """Turns SIGTERM into ``SystemExit(143)`` raised between two results of the sweep, so a
+    killed sweep removes its temporary files and stops its workers like an interrupted one.
+
+    The handler only records the signal: an exception raised inside the process pool's own
+    bookkeeping (starting its threads and processes) could leave it unable to shut down.
+    """
+
+    def __init__(self, progress: Progress) -> None:
+        self.progress = progress
+        self.signum = None
+
+    def __call__(self, result) -> None:
+        self.progress(result)
+        if self.signum is not None:
+            raise SystemExit(128 + self.signum)
+
+    @contextlib.contextmanager
+    def installed(self):
+        if threading.current_thread() is not threading.main_thread():
+            yield self  # signal handlers can only be set in the main thread
+            return
+
+        def record(signum, frame):
+            self.signum = signum
+
+        previous = signal.signal(signal.SIGTERM, record)
+        try:
+            yield self
+        finally:
+            signal.signal(signal.SIGTERM, previous)
+        if self.signum is not None:
+            raise SystemExit(128 + self.signum)
+
+
+def run(args) -> int:
+    """Trace every ``k``; write the two files and return 0, or write nothing and return 1."""
+    # Imported here, not at the top: the tracer and the CSV files load the engine and pandas,
+    # which `groove --help` and `groove solve` should not wait for.
+    from ..io.sweep import write_sweep
+    from ..tracing import sweep_results
+
+    if not args.k_min <= args.k_max:
+        raise UsageError(f"--k-min = {args.k_min!r} must be <= --k-max = {args.k_max!r}")
+    out = output_directory(args.out)
+    ks = sweep_values(args.k_min, args.k_max, args.n)
+    if args.certify:
+        # Imported here: only --certify needs to know whether python-flint is installed.
+        from continuation.numbers import require_flint
+
+        try:
+            require_flint()
+        except ImportError as exc:
+            raise UsageError(str(exc)) from None
+    compliance = compliance_from(args)
+    results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
+                            compliance=compliance, certify=args.certify)
+    with _Termination(Progress(len(ks))).installed() as progress:
+        paths, failed = write_sweep(results, out, suffix=compliance_label(compliance),
+                                    progress=progress)
+    for result in failed:
+        for failure in result.failures:
+            print(f"groove sweep: error: k = {result.k!r}: {failure}", file=sys.stderr)
+    if failed:
+        print(f"groove sweep: nothing written: {len(failed)} of {len(ks)} k failed (see above)",
+              file=sys.stderr)
+        return EXIT_FAILED
+    print(f"{len(ks)} k from {args.k_min:g} to {args.k_max:g}: "
+          f"{', '.join(str(p) for p in paths)}")
+    return EXIT_OK

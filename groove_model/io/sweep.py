@@ -1,0 +1,85 @@
+"""A sweep over many ``k`` streamed to two CSV files, written atomically.
+
+The rows of each ``k`` are appended as its result arrives, so memory does not grow with the
+number of ``k``; the files appear under their names only once every ``k`` has been written.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+from ..tracing import SPECIAL_POINT_COLUMNS, SweepResult
+from .atomic import commit_temporary, create_temporary, remove_stale_temporaries
+
+__all__ = ["SWEEP_FILES", "write_sweep"]
+
+#: the boundary rows of every k (long format) and the special points of every k
+SWEEP_FILES = ("sweep_boundaries.csv", "sweep_special_points.csv")
+
+
+def _temporary(path: Path):
+    name = create_temporary(path)
+    return open(name, "w", newline=""), name  # closed by write_sweep
+
+
+def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep",
+                suffix: str = "", progress: Callable[[SweepResult], None] | None = None):
+    """Stream every result into ``directory`` (created if needed); keep them only if all are ok.
+
+    Parameters
+    ----------
+    results : iterable of SweepResult
+        In the order the rows are to be written (e.g. :func:`groove_model.tracing.sweep_results`).
+    directory : path-like
+    prefix, suffix : str
+        The files are ``{prefix}_boundaries{suffix}.csv`` and
+        ``{prefix}_special_points{suffix}.csv`` (:data:`SWEEP_FILES` by default); ``suffix``
+        names another compliance than the paper's (e.g. ``"_nu0.3"``).
+    progress : callable, optional
+        Called with each result after its rows are written.
+
+    Returns
+    -------
+    paths : tuple of Path
+        The two files (:data:`SWEEP_FILES`), or ``()`` if a ``k`` failed (nothing is left).
+    failed : list of SweepResult
+        The results that were not ok.
+
+    Notes
+    -----
+    Floats are written with 17 significant digits, as by :func:`write_boundary_set`, so the
+    bytes depend only on the traced values, not on how the sweep was run.
+    """
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    remove_stale_temporaries(directory)
+    targets = [directory / f"{prefix}_{table}{suffix}.csv"
+               for table in ("boundaries", "special_points")]
+    opened = [_temporary(path) for path in targets]
+    failed = []
+    try:
+        first = True
+        for result in results:
+            tables = (result.boundaries, result.special_points[list(SPECIAL_POINT_COLUMNS)])
+            for (handle, _), table in zip(opened, tables, strict=True):
+                table.to_csv(handle, header=first, index=False, float_format="%.17g")
+            first = False
+            if not result.ok:
+                failed.append(result)
+            if progress is not None:
+                progress(result)
+        for handle, _ in opened:
+            handle.close()
+        if failed or first:
+            for _, name in opened:
+                name.unlink(missing_ok=True)
+            return (), failed
+        for (_, name), path in zip(opened, targets, strict=True):
+            commit_temporary(name, path)
+        return tuple(targets), failed
+    except BaseException:
+        for handle, name in opened:
+            handle.close()
+            name.unlink(missing_ok=True)
+        raise

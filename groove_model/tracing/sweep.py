@@ -1,0 +1,241 @@
+"""Many values of ``k`` at once: serial, on a process pool, or on any executor.
+
+Each ``k`` is traced by :func:`~groove_model.tracing.tracer.trace_boundaries`, independently of
+the others, and reduced to its two tables (the boundary rows, :data:`CSV_COLUMNS`, and the
+special points, :data:`SPECIAL_POINT_COLUMNS` plus ``note``). The tables are computed where the
+``k`` is traced (in the worker process when there is one) by the same code in the same order, so
+the result does not depend on how the sweep is run: serially, with ``jobs`` processes, or on an
+executor the caller passes (a ``concurrent.futures`` process pool, or e.g. Dask's
+``Client.get_executor()`` to spread a sweep over machines).
+
+Results come back in the order of the ``k`` values while at most a bounded number of chunks are
+in flight, so a sweep can be streamed to disk (:func:`sweep_results`) in constant memory however
+many ``k`` it has.
+"""
+
+from __future__ import annotations
+
+import collections
+import concurrent.futures
+import math
+import os
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+
+import pandas as pd
+
+from continuation import Options
+
+from ..model.parameters import Compliance, Parameters
+from .curves import CSV_COLUMNS, TraceError
+from .tracer import trace_boundaries
+
+__all__ = ["SweepError", "SweepResult", "sweep_results", "trace_many"]
+
+#: most ``k`` per task sent to a worker: large enough to amortise the round trip, small enough
+#: to balance the load and keep the window of results in flight small
+MAX_CHUNK = 16
+
+#: chunks in flight per worker: enough to keep every worker busy while the results are consumed
+WINDOW_PER_WORKER = 4
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """The traced boundaries of one ``k`` of a sweep, as tables.
+
+    Attributes
+    ----------
+    k : float
+    ok : bool
+        Whether every boundary was traced to its expected end (``BoundarySet.ok``).
+    failures : tuple of str
+        What failed (``BoundarySet.failures``); empty when ``ok``.
+    notes : tuple of str
+        ``BoundarySet.notes``.
+    boundaries : pandas.DataFrame
+        The boundary rows (columns :data:`CSV_COLUMNS`).
+    special_points : pandas.DataFrame
+        The special points (columns :data:`SPECIAL_POINT_COLUMNS` and ``note``).
+    """
+
+    k: float
+    ok: bool
+    failures: tuple = ()
+    notes: tuple = ()
+    boundaries: pd.DataFrame = field(default=None, repr=False)
+    special_points: pd.DataFrame = field(default=None, repr=False)
+
+
+class SweepError(TraceError):
+    """A ``k`` of a sweep failed; ``results`` holds every result, the failed ones included."""
+
+    def __init__(self, message: str, results: list) -> None:
+        super().__init__(message, None)
+        self.results = results
+
+
+def _trace_chunk(ks: list, keep_unphysical: bool, options: Options | None,
+                 compliance: Compliance | None = None, certify: bool = False) -> list:
+    """Trace a chunk of ``k`` values (in a worker, or in this process); picklable."""
+    results = []
+    for k in ks:
+        params = Parameters(k, compliance or Compliance())
+        traced = trace_boundaries(params, keep_unphysical=keep_unphysical, options=options,
+                                  certify=certify)
+        results.append(SweepResult(traced.k, traced.ok, traced.failures, traced.notes,
+                                   traced.to_frame(), traced.special_points_frame()))
+    return results
+
+
+def _check_ks(ks) -> list:
+    try:
+        values = [float(k) for k in ks]
+    except (TypeError, ValueError):
+        raise ValueError(f"ks must be an iterable of numbers, got {ks!r}") from None
+    for k in values:
+        if not (math.isfinite(k) and k > 0.0):
+            raise ValueError(f"friction coefficient k = {k!r} is outside the allowed range: "
+                             "finite and > 0")
+    return values
+
+
+def _workers(jobs, executor) -> int:
+    """How many tasks run at once: ``jobs``, the executor's own count, or the CPUs."""
+    if executor is not None:
+        count = getattr(executor, "_max_workers", None)
+        return count if isinstance(count, int) and count > 0 else (os.cpu_count() or 1)
+    return jobs
+
+
+def _in_order(executor, function, chunks: list, window: int, args: tuple) -> Iterator[list]:
+    """``function(chunk, *args)`` for every chunk on ``executor``, in order, ``window`` at a time."""
+    pending: collections.deque = collections.deque()
+    remaining = iter(chunks)
+    try:
+        for chunk in remaining:
+            pending.append(executor.submit(function, chunk, *args))
+            if len(pending) >= window:
+                break
+        while pending:
+            done = pending.popleft().result()
+            chunk = next(remaining, None)
+            if chunk is not None:
+                pending.append(executor.submit(function, chunk, *args))
+            yield done
+    finally:
+        for future in pending:
+            future.cancel()
+
+
+def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
+                  executor: concurrent.futures.Executor | None = None,
+                  keep_unphysical: bool = False,
+                  options: Options | None = None,
+                  compliance: Compliance | None = None,
+                  certify: bool = False) -> Iterator[SweepResult]:
+    """Trace every ``k`` and yield one :class:`SweepResult` per ``k``, in the order given.
+
+    Parameters
+    ----------
+    ks : iterable of float
+        Friction coefficients, each finite and > 0 (duplicates are traced again).
+    jobs : int or None
+        ``None`` or 1: trace in this process; ``N >= 2``: on a pool of ``N`` processes.
+    executor : concurrent.futures.Executor, optional
+        Run the traces there instead (``jobs`` must then be ``None``); the executor is not
+        shut down. Its workers must be able to import ``groove_model``.
+    keep_unphysical, options, certify
+        As for :func:`~groove_model.tracing.tracer.trace_boundaries`.
+    compliance : Compliance, optional
+        The contact's compliance (default the paper's law), the same for every ``k``.
+
+    Yields
+    ------
+    SweepResult
+        Failures are yielded like any result (``ok = False``), never skipped.
+
+    Raises
+    ------
+    ValueError
+        If a ``k`` is not finite and > 0, ``jobs`` is not ``None`` or an integer >= 1, or
+        both ``jobs`` and ``executor`` are given.
+
+    Notes
+    -----
+    At most ``4 x workers`` chunks of at most :data:`MAX_CHUNK` ``k`` are in flight, so memory
+    does not grow with the number of ``k`` when the results are consumed as they come.
+    """
+    values = _check_ks(ks)
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise ValueError(f"jobs = {jobs!r} is outside the allowed range: None or an integer "
+                         ">= 1")
+    if jobs is not None and executor is not None:
+        raise ValueError("give jobs or executor, not both")
+    if executor is not None and not isinstance(executor, concurrent.futures.Executor):
+        raise TypeError(f"executor must be a concurrent.futures.Executor, got "
+                        f"{type(executor).__name__}")
+    args = (keep_unphysical, options, compliance, certify)
+    if executor is None and (jobs is None or jobs == 1):
+        for k in values:
+            yield from _trace_chunk([k], *args)
+        return
+    workers = _workers(jobs, executor)
+    size = max(1, min(MAX_CHUNK, len(values) // (WINDOW_PER_WORKER * workers)))
+    chunks = [values[i:i + size] for i in range(0, len(values), size)]
+    window = WINDOW_PER_WORKER * workers
+    if executor is not None:
+        for results in _in_order(executor, _trace_chunk, chunks, window, args):
+            yield from results
+        return
+    with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
+        for results in _in_order(pool, _trace_chunk, chunks, window, args):
+            yield from results
+
+
+def trace_many(ks: Iterable[float], jobs: int | None = None, *,
+               executor: concurrent.futures.Executor | None = None,
+               keep_unphysical: bool = False, options: Options | None = None,
+               compliance: Compliance | None = None, certify: bool = False) -> pd.DataFrame:
+    """Every boundary for many ``k``, as one table (long format, a ``k`` column).
+
+    Parameters
+    ----------
+    ks : iterable of float
+        Friction coefficients, each finite and > 0.
+    jobs : int or None
+        ``None`` or 1: in this process; ``N >= 2``: on a pool of ``N`` processes.
+    executor : concurrent.futures.Executor, optional
+        Run the traces on this executor instead (any ``concurrent.futures.Executor``: a
+        process pool, or e.g. Dask's ``Client.get_executor()``).
+    keep_unphysical, options, compliance, certify
+        As for :func:`sweep_results`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The rows of every ``k`` in the order given (columns :data:`CSV_COLUMNS`), identical
+        whatever ``jobs`` or ``executor``. The special points of each ``k`` are in the
+        results of :func:`sweep_results`.
+
+    Raises
+    ------
+    SweepError
+        If a ``k`` failed; it carries every result (``.results``), the failed ones included.
+
+    Notes
+    -----
+    As with any process pool, a script that calls this with ``jobs >= 2`` must run its top
+    level under ``if __name__ == "__main__":`` where processes are started by spawning
+    (Windows, macOS, and Linux from Python 3.14).
+    """
+    results = list(sweep_results(ks, jobs=jobs, executor=executor,
+                                 keep_unphysical=keep_unphysical, options=options,
+                                 compliance=compliance, certify=certify))
+    failed = [r for r in results if not r.ok]
+    if failed:
+        raise SweepError("; ".join(f"k = {r.k!r}: {', '.join(r.failures)}" for r in failed),
+                         results)
+    if not results:
+        return pd.DataFrame(columns=list(CSV_COLUMNS))
+    return pd.concat([r.boundaries for r in results], ignore_index=True)

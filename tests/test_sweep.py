@@ -1,0 +1,260 @@
+"""Sweeps over many k: the parallel and executor paths give what the serial one gives.
+
+Speed is measured in benchmarks/run.py, never here: these tests check only that every way of
+running a sweep returns the same curves (to 1e-12, in fact bit for bit) and the same special
+points as tracing each k on its own, that ``groove sweep`` writes the same bytes for any
+``--jobs``, and that its progress bar appears on a terminal only.
+"""
+
+import concurrent.futures
+import os
+import pty
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from groove_model import trace_many
+from groove_model.cli.main import main
+from groove_model.cli.sweep import Progress, sweep_values
+from groove_model.io.sweep import SWEEP_FILES, write_sweep
+from groove_model.tracing import (
+    CSV_COLUMNS,
+    SweepError,
+    SweepResult,
+    sweep_results,
+    trace_boundaries,
+)
+
+#: both sides of both thresholds (k = 1/sqrt 2, sqrt 2) and the ends of the usual range
+KS = [0.05, 0.70, 0.72, 1.41, 1.42, 250.0]
+NUMBERS = ["s", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R", "upsilon",
+           "T_over_N_L", "T_over_N_R", "d_L"]
+
+
+@pytest.fixture(scope="module")
+def serial():
+    """Each k traced on its own, as trace_boundaries returns it."""
+    return {k: trace_boundaries(k) for k in KS}
+
+
+def _same_curves(frame: pd.DataFrame, sets) -> None:
+    expected = pd.concat([sets[k].to_frame() for k in KS], ignore_index=True)
+    assert list(frame.columns) == list(CSV_COLUMNS)
+    assert len(frame) == len(expected)
+    for column in ("boundary", "point", "physical"):
+        assert list(frame[column]) == list(expected[column]), column
+    assert np.array_equal(frame["k"].to_numpy(), expected["k"].to_numpy())
+    a, b = frame[NUMBERS].to_numpy(float), expected[NUMBERS].to_numpy(float)
+    assert np.array_equal(np.isfinite(a), np.isfinite(b))
+    finite = np.isfinite(b)
+    assert np.max(np.abs(a[finite] - b[finite])) <= 1e-12
+    assert frame.equals(expected)  # in fact bit for bit
+
+
+def _same_special_points(results, sets) -> None:
+    assert [r.k for r in results] == KS
+    for result in results:
+        expected = sets[result.k].special_points_frame()
+        assert result.ok and result.failures == ()
+        assert list(result.special_points["kind"]) == list(expected["kind"])
+        assert list(result.special_points["boundary"]) == list(expected["boundary"])
+        assert result.special_points.equals(expected)
+
+
+def test_serial_sweep_is_each_k_on_its_own(serial):
+    _same_curves(trace_many(KS), serial)
+    _same_special_points(list(sweep_results(KS)), serial)
+
+
+def test_process_pool_gives_the_serial_curves_and_special_points(serial):
+    _same_curves(trace_many(KS, jobs=2), serial)
+    _same_special_points(list(sweep_results(KS, jobs=2)), serial)
+
+
+def test_any_executor_gives_the_serial_curves_and_special_points(serial):
+    with concurrent.futures.ProcessPoolExecutor(max_workers=2) as executor:
+        _same_curves(trace_many(KS, executor=executor), serial)
+        _same_special_points(list(sweep_results(KS, executor=executor)), serial)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=3) as executor:
+        _same_curves(trace_many(KS, executor=executor), serial)
+
+
+def test_results_come_in_the_order_given_with_a_small_window():
+    ks = [3.0, 0.3, 30.0, 0.03, 3.0]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as executor:
+        results = list(sweep_results(ks, executor=executor))
+    assert [r.k for r in results] == ks
+
+
+@pytest.mark.parametrize("bad", [[0.0], [-1.0], [float("nan")], [float("inf")], ["x"]])
+def test_bad_k_is_rejected(bad):
+    with pytest.raises(ValueError, match="k"):
+        trace_many(bad)
+
+
+@pytest.mark.parametrize("jobs", [0, -2, 1.5, True])
+def test_bad_jobs_is_rejected(jobs):
+    with pytest.raises(ValueError, match="jobs"):
+        list(sweep_results([1.0], jobs=jobs))
+
+
+def test_jobs_and_executor_together_are_rejected():
+    with concurrent.futures.ThreadPoolExecutor(1) as executor:
+        with pytest.raises(ValueError, match="not both"):
+            list(sweep_results([1.0], jobs=2, executor=executor))
+
+
+def _failed(k):
+    empty = pd.DataFrame(columns=list(CSV_COLUMNS))
+    specials = pd.DataFrame(columns=["boundary", "k", "kind", "gamma", "delta", "beta_L",
+                                     "upsilon", "note"])
+    return SweepResult(k, False, ("rs_no_roll: it stops short",), (), empty, specials)
+
+
+def test_a_failed_k_raises_with_every_result(monkeypatch):
+    import groove_model.tracing.sweep as sweep
+
+    original = sweep._trace_chunk
+
+    def failing(ks, *args):
+        return [_failed(k) if k == 2.0 else r for k, r in zip(ks, original(ks, *args))]
+
+    monkeypatch.setattr(sweep, "_trace_chunk", failing)
+    with pytest.raises(SweepError, match="k = 2.0: rs_no_roll") as error:
+        trace_many([1.0, 2.0])
+    assert [r.ok for r in error.value.results] == [True, False]
+
+
+def test_write_sweep_leaves_nothing_when_a_k_failed(tmp_path):
+    good = next(sweep_results([1.0]))
+    paths, failed = write_sweep([good, _failed(2.0)], tmp_path)
+    assert paths == () and [r.k for r in failed] == [2.0]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sweep_values_are_log_spaced_with_exact_ends():
+    values = sweep_values(1e-2, 1e3, 6)
+    assert values[0] == 1e-2 and values[-1] == 1e3
+    assert np.allclose(np.diff(np.log10(values)), 1.0)
+    assert sweep_values(2.0, 2.0, 1) == [2.0]
+
+
+def _sweep(out: Path, jobs: int, n: int = 8):
+    return main(["sweep", "--k-min", "0.05", "--k-max", "50", "-n", str(n), "--jobs", str(jobs),
+                 "--out", str(out)])
+
+
+def test_sweep_command_writes_the_same_bytes_for_any_jobs(tmp_path, capsys):
+    assert _sweep(tmp_path / "one", 1) == 0
+    assert _sweep(tmp_path / "two", 2) == 0
+    for name in SWEEP_FILES:
+        one, two = (tmp_path / "one" / name).read_bytes(), (tmp_path / "two" / name).read_bytes()
+        assert one == two and len(one) > 1000, name
+    frame = pd.read_csv(tmp_path / "one" / SWEEP_FILES[0])
+    assert tuple(frame.columns) == CSV_COLUMNS
+    assert np.allclose(sorted(set(frame["k"])), sweep_values(0.05, 50.0, 8), rtol=1e-15)
+    assert "8 k from 0.05 to 50" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_sweep_command_of_200_k_writes_the_same_bytes_for_jobs_1_and_4(tmp_path):
+    args = ["sweep", "--k-min", "1e-2", "--k-max", "1e3", "-n", "200", "--out"]
+    assert main([*args, str(tmp_path / "one"), "--jobs", "1"]) == 0
+    assert main([*args, str(tmp_path / "four"), "--jobs", "4"]) == 0
+    for name in SWEEP_FILES:
+        assert (tmp_path / "one" / name).read_bytes() == (tmp_path / "four" / name).read_bytes()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["--k-min", "10", "--k-max", "1", "-n", "3"], "--k-min"),
+    (["--k-min", "0", "--k-max", "1", "-n", "3"], "k"),
+    (["--k-min", "1", "--k-max", "2", "-n", "0"], "-n"),
+    (["--k-min", "1", "--k-max", "2", "-n", "3", "--jobs", "0"], "--jobs"),
+])
+def test_sweep_command_rejects_bad_input(tmp_path, capsys, argv, message):
+    with pytest.raises(SystemExit) as exit_:
+        main(["sweep", *argv, "--out", str(tmp_path / "out")])
+    assert exit_.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+class _Terminal:
+    def __init__(self):
+        self.text = ""
+
+    def isatty(self):
+        return True
+
+    def write(self, text):
+        self.text += text
+
+    def flush(self):
+        pass
+
+
+def test_progress_bar_draws_on_a_terminal_only():
+    terminal = _Terminal()
+    bar = Progress(4, terminal)
+    for _ in range(4):
+        bar()
+    assert terminal.text.count("\r") == 4 and "4/4 k" in terminal.text
+    assert terminal.text.endswith("\n")
+    piped = _Terminal()
+    piped.isatty = lambda: False
+    bar = Progress(4, piped)
+    bar()
+    assert piped.text == ""
+
+
+def _run_groove(args, stderr):
+    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    return subprocess.run([sys.executable, "-c", code, *args], stdout=subprocess.PIPE,
+                          stderr=stderr, timeout=300)
+
+
+def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
+    args = ["sweep", "--k-min", "1", "--k-max", "2", "-n", "2"]
+    piped = _run_groove([*args, "--out", str(tmp_path / "piped")], subprocess.PIPE)
+    assert piped.returncode == 0 and b"\r" not in piped.stderr and b"2/2 k" not in piped.stderr
+    controller, terminal = pty.openpty()
+    try:
+        shown = _run_groove([*args, "--out", str(tmp_path / "tty")], terminal)
+        os.close(terminal)
+        terminal = None
+        screen = b""
+        while True:
+            try:
+                chunk = os.read(controller, 4096)
+            except OSError:
+                break
+            if not chunk:
+                break
+            screen += chunk
+    finally:
+        if terminal is not None:
+            os.close(terminal)
+        os.close(controller)
+    assert shown.returncode == 0
+    assert b"\r[" in screen and b"2/2 k" in screen
+
+
+def test_a_terminated_sweep_leaves_no_file(tmp_path):
+    out = tmp_path / "out"
+    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
+                                "--k-max", "1e3", "-n", "4000", "--jobs", "2", "--out",
+                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + 120
+    while not (out.exists() and any(out.iterdir())) and time.monotonic() < deadline:
+        time.sleep(0.05)  # until the temporary files exist
+    process.send_signal(signal.SIGTERM)
+    process.communicate(timeout=120)
+    assert process.returncode == 128 + signal.SIGTERM
+    assert list(out.iterdir()) == []
