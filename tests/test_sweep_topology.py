@@ -1,7 +1,8 @@
 """Never silently wrong: the tracer over 300+ values of k, each checked independently.
 
 For every k in a log-spaced sweep of [1e-4, 1e6] plus the neighbours of the thresholds
-(``sqrt 2 (1 +- 10^-j)``, ``(1/sqrt 2)(1 +- 10^-j)``) and values that once failed, the traced
+(``sqrt 2 (1 +- 10^-j)``, ``(1/sqrt 2)(1 +- 10^-j)``, ``k_cross (1 +- 10^-j)``) and values that
+once failed, 361 values in all, the traced
 boundaries must
 
 * all have status ok;
@@ -29,6 +30,9 @@ from groove_model.tracing import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)
 K_FOLD, K_BRANCH = 1.0 / SQRT2, SQRT2
+#: where the junction passes the maximum of delta along dr_limit (the atlas's k_cross); the
+#: tracer checks the order of the two, the counts here are the same on both sides
+K_CROSS = 15.19939619365445
 #: within this relative distance of a threshold either topology is accepted
 BAND = 1e-9
 
@@ -36,6 +40,7 @@ SWEEP = sorted({
     *np.geomspace(1e-4, 1e6, 300).tolist(),
     *(K_BRANCH * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
     *(K_FOLD * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
+    *(K_CROSS * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
     14.4, 14.5, 32.7274, 32.72740209872818, 0.00013848863713938732, 1.4283556979968262,
     1e4, 1e6,
     # rs_no_roll ended on delta = gamma 1.2e-9 short of the corner (benchmarks' sweep)
