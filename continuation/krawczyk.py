@@ -5,9 +5,9 @@ the coordinates ``x = x_a + tau v + N (c(tau) + y)``, where ``N`` picks the coor
 than the one the chord moves most in (:class:`Frame`: the curve as a graph over that
 coordinate, ``y`` offsets along the axes) and ``c`` is the cubic Hermite interpolant of the
 two points and their tangents (error ``O(L^4)``). For the zeros of ``H`` in a piece
-``tau in T`` of the tube ``|y_k| <= r_k`` the parametrised Krawczyk operator (Krawczyk 1969; Neumaier, *Interval Methods for Systems of
-Equations*, 1990, sec. 5.1; for curves van den Berg, Lessard & Mischaikow, Math. Comp. 79
-(2010) 1565-1584) is
+``tau in T`` of the tube ``|y_k| <= r_k`` the parametrised Krawczyk operator (Krawczyk 1969;
+Neumaier, *Interval Methods for Systems of Equations*, 1990, sec. 5.1; for curves van den Berg,
+Lessard & Mischaikow, Math. Comp. 79 (2010) 1565-1584) is
 
 .. math::
 

@@ -216,7 +216,7 @@ def balls() -> _Balls:
 
 
 class Jet:
-    """A number with its first (``d``) and optionally second (``dd``) derivative along one direction.
+    """A number with its first (``d``) and optional second (``dd``) derivative in one direction.
 
     ``v``, ``d`` and ``dd`` are base numbers (floats or balls); ``dd`` is ``None`` for
     first-order jets. Comparisons and ``abs`` act on the value (for branches only).
