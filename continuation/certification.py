@@ -130,7 +130,7 @@ class _Run:
                            self.options.node_tolerance * scale)
         if isinstance(node, str):
             return _Failure(Check.POINT, f"point {i} is not proven on the curve: {node}", point=i)
-        distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i]))
+        distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i], strict=True))
         if not distance <= self.options.node_tolerance * scale:
             return _Failure(Check.POINT, f"point {i} is {distance:.3g} from the curve, more than "
                             f"{self.options.node_tolerance * scale:.3g}", point=i)
@@ -153,7 +153,7 @@ class _Run:
         for piece in segment.pieces:
             if tau >= piece.lo and tau <= piece.hi:
                 return all(self.B.error(r).contains_interior(yi)
-                           for yi, r in zip(y, piece.radii))
+                           for yi, r in zip(y, piece.radii, strict=True))
         return False
 
     def arcs(self):
@@ -252,7 +252,7 @@ class _Run:
         boxes = [p.arc for s in range(lo, hi) for p in self.segments[s].pieces]
         hull = list(boxes[0])
         for box in boxes[1:]:
-            hull = [a.union(b) for a, b in zip(hull, box)]
+            hull = [a.union(b) for a, b in zip(hull, box, strict=True)]
         return hull
 
     def _exclude(self, function: Function, lo: int, hi: int, keep: set, excluded: dict) -> None:

@@ -59,7 +59,7 @@ def _float_sinc_derivatives(u: float):
 def _float_gauss(n: int, panels: int = 1) -> tuple:
     nodes, weights = np.polynomial.legendre.leggauss(n)
     return tuple(((p + 0.5 * (1.0 + float(t))) / panels, 0.5 * float(w) / panels)
-                 for p in range(panels) for t, w in zip(nodes, weights))
+                 for p in range(panels) for t, w in zip(nodes, weights, strict=True))
 
 
 class _Floats:

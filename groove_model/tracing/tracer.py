@@ -103,7 +103,7 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     worst = 0.0
     # norms on Python floats (the same numbers as np.linalg.norm, a fraction of its overhead)
-    for x, y in zip(rs.x, system.from_x(rs.x)):
+    for x, y in zip(rs.x, system.from_x(rs.x), strict=True):
         for _ in range(20):
             H, J = system.residual_and_jacobian(y)
             _, _, multipliers, info = dgesv(J @ J.T, H)
