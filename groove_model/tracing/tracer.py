@@ -344,6 +344,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
                          f"0 < gamma_min < arctan(k/c) = {params.gamma_limit!r}")
     job = _Job(params, options, gamma_min, keep_unphysical)
     expected = expected_topology(params)
+    curves: dict[str, BoundaryCurve]
     if expected["dr_no_roll"].present is False and not keep_unphysical:
         # below k_branch the atlas has no junction: dr_no_roll has no physical part
         curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "
