@@ -83,7 +83,7 @@ def run_sweep1000(stride: int = 1, repeats: int = 1) -> tuple[list[Record], dict
     failed = [r.k for r in serial if not r.ok]
     rows = sum(len(r.boundaries) for r in serial)
     records = []
-    for tool, (wall, times, results) in runs.items():
+    for tool, (wall, times, _results) in runs.items():
         note = (f"{len(ks)} of the 1000 k log-spaced over [1e-4, 1e6]"
                 + (f", times scaled by {scale:g} to 1000 k" if scale != 1 else "")
                 + f"; {'serial' if tool == 'ours' else '2 processes'}; {rows} rows; "

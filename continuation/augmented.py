@@ -73,8 +73,8 @@ class FoldSystem:
     def __init__(self, family: Family, coordinate: int, z: np.ndarray) -> None:
         self.family = family
         self.coordinate = coordinate
-        self._key = None
-        self._solution = None
+        self._key: bytes | None = None
+        self._solution: tuple[float, np.ndarray, np.ndarray, np.ndarray] | None = None
         A = self._matrix(family.jacobian_x(z[:-1], float(z[-1])))
         if not np.all(np.isfinite(A)):
             raise ValueError(f"the Jacobian is not finite at z = {z!r}: no fold test there")

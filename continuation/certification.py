@@ -31,6 +31,7 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass
+from typing import Any, cast
 
 import numpy as np
 
@@ -130,7 +131,7 @@ class _Run:
                            self.options.node_tolerance * scale)
         if isinstance(node, str):
             return _Failure(Check.POINT, f"point {i} is not proven on the curve: {node}", point=i)
-        distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i]))
+        distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i], strict=True))
         if not distance <= self.options.node_tolerance * scale:
             return _Failure(Check.POINT, f"point {i} is {distance:.3g} from the curve, more than "
                             f"{self.options.node_tolerance * scale:.3g}", point=i)
@@ -153,7 +154,7 @@ class _Run:
         for piece in segment.pieces:
             if tau >= piece.lo and tau <= piece.hi:
                 return all(self.B.error(r).contains_interior(yi)
-                           for yi, r in zip(y, piece.radii))
+                           for yi, r in zip(y, piece.radii, strict=True))
         return False
 
     def arcs(self):
@@ -238,7 +239,9 @@ class _Run:
             return self._fail(function, f"its zero at point {i}: {box}", point=i)
         centre, radius = box
         balls_ = [self.B.arb(c, radius) for c in centre]
-        if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch):
+        # every run of the stretch is set here (a missing one failed above)
+        if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch
+                   if run is not None):
             return self._fail(function, f"the box of its zero at point {i} is not in the tubes "
                               "of the stretch through it", point=i)
         distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
@@ -252,7 +255,7 @@ class _Run:
         boxes = [p.arc for s in range(lo, hi) for p in self.segments[s].pieces]
         hull = list(boxes[0])
         for box in boxes[1:]:
-            hull = [a.union(b) for a, b in zip(hull, box)]
+            hull = [a.union(b) for a, b in zip(hull, box, strict=True)]
         return hull
 
     def _exclude(self, function: Function, lo: int, hi: int, keep: set, excluded: dict) -> None:
@@ -372,11 +375,13 @@ def _check(curve: Curve, problem, events, fold_coordinates) -> _Failure | None:
     for c in fold_coordinates:
         if not (isinstance(c, (int, np.integer)) and 0 <= c < n1):
             raise ValueError(f"fold coordinate {c!r} is outside [0, {n1 - 1}]")
-    folds = {p.coordinate for p in curve.special_points if p.kind is SpecialKind.FOLD}
+    # a fold's coordinate and an event's position are ints (SpecialPoint)
+    folds = {cast(int, p.coordinate) for p in curve.special_points
+             if p.kind is SpecialKind.FOLD}
     if not folds <= set(fold_coordinates):
         raise ValueError(f"the curve reports folds in coordinates {sorted(folds)}, but "
                          f"fold_coordinates = {tuple(fold_coordinates)!r}: pass them all")
-    used = [p.event for p in curve.special_points if p.kind is SpecialKind.EVENT]
+    used = [cast(int, p.event) for p in curve.special_points if p.kind is SpecialKind.EVENT]
     if used and max(used) >= len(events):
         raise ValueError(f"the curve reports event {max(used)}, but certify was given "
                          f"{len(events)} event(s): pass every event of the run, in its order")
@@ -451,9 +456,10 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
                 break
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
-    common = dict(segments=len(run.segments), pieces=pieces, max_radius=radius,
-                  node_distance=run.node_distance, special_points=tuple(run.proven),
-                  seconds=time.perf_counter() - start)
+    common: dict[str, Any] = dict(
+        segments=len(run.segments), pieces=pieces, max_radius=radius,
+        node_distance=run.node_distance, special_points=tuple(run.proven),
+        seconds=time.perf_counter() - start)
     note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
         "point to rounding)" if merged else ""
     if failure is not None:

@@ -47,6 +47,7 @@ import enum
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import cast
 
 import numpy as np
 
@@ -392,8 +393,9 @@ def _follow(family, renew, system, z0, what, turn_kind, direction, options, even
         pieces.append(curve)
         systems.append(system)
         ended = [p for p in curve.special("event") if p.index == len(curve) - 1]
+        # an event point's position is an int (SpecialPoint)
         renewing = (curve.status is Status.TERMINAL_EVENT and ended
-                    and ended[-1].event >= len(events) and len(curve) > 1)
+                    and cast(int, ended[-1].event) >= len(events) and len(curve) > 1)
         if not renewing or len(pieces) >= MAX_PIECES:
             break
         z0, heading = curve.x[-1], curve.tangents[-1]

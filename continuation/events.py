@@ -49,7 +49,7 @@ class Event:
     """
 
     name: str
-    function: Callable[[np.ndarray], float]
+    function: Callable[..., float]
     direction: int = 0
     terminal: bool = False
     gradient: Callable[[np.ndarray], np.ndarray] | None = None

@@ -12,6 +12,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from .events import Event
 from .problem import Problem, as_vector
@@ -79,14 +80,16 @@ class Family:
     def at(self, p: float) -> Problem:
         """The curve problem ``H(., p) = 0`` at a fixed ``p``, for :func:`continuation.trace`."""
         p = float(p)
-        jacobian = None if self.jacobian is None else (lambda x: self.jacobian(x, p))
+        jacobian_xp = self.jacobian
+        jacobian = None if jacobian_xp is None else (lambda x: jacobian_xp(x, p))
         return Problem(lambda x: self.residual(x, p), jacobian, names=self.names)
 
     def event_at(self, event: Event, p: float) -> Event:
         """The event ``g(x, p)`` of ``z = (x, p)`` as an event of ``x`` at a fixed ``p``."""
         p = float(p)
-        gradient = None if event.gradient is None else (
-            lambda x: np.asarray(event.gradient(np.append(x, p)), dtype=float)[:-1])
+        gradient_z = event.gradient
+        gradient = None if gradient_z is None else (
+            lambda x: np.asarray(gradient_z(np.append(x, p)), dtype=float)[:-1])
         return Event(event.name, lambda x: event.function(np.append(x, p)), event.direction,
                      event.terminal, gradient)
 
@@ -122,7 +125,7 @@ class Family:
         return np.column_stack([self.jacobian_x(x, p), self.jacobian_p(x, p)])
 
 
-def central_gradient(function: Callable[[np.ndarray], np.ndarray], z: np.ndarray) -> np.ndarray:
+def central_gradient(function: Callable[[np.ndarray], npt.ArrayLike], z: np.ndarray) -> np.ndarray:
     """Central differences of ``function`` at ``z``: shape ``(m, z.size)``, or ``(z.size,)``
     for a scalar function; step ``eps^(1/3) max(1, |z_j|)`` per coordinate."""
     z = as_vector("z", z)

@@ -5,9 +5,9 @@ the coordinates ``x = x_a + tau v + N (c(tau) + y)``, where ``N`` picks the coor
 than the one the chord moves most in (:class:`Frame`: the curve as a graph over that
 coordinate, ``y`` offsets along the axes) and ``c`` is the cubic Hermite interpolant of the
 two points and their tangents (error ``O(L^4)``). For the zeros of ``H`` in a piece
-``tau in T`` of the tube ``|y_k| <= r_k`` the parametrised Krawczyk operator (Krawczyk 1969; Neumaier, *Interval Methods for Systems of
-Equations*, 1990, sec. 5.1; for curves van den Berg, Lessard & Mischaikow, Math. Comp. 79
-(2010) 1565-1584) is
+``tau in T`` of the tube ``|y_k| <= r_k`` the parametrised Krawczyk operator (Krawczyk 1969;
+Neumaier, *Interval Methods for Systems of Equations*, 1990, sec. 5.1; for curves van den Berg,
+Lessard & Mischaikow, Math. Comp. 79 (2010) 1565-1584) is
 
 .. math::
 
@@ -41,7 +41,7 @@ _SHORT = 1e-6
 
 def _matvec(M, v):
     """``M v`` for a float matrix (nested lists) and a vector of numbers."""
-    return [sum(m_ij * v_j for m_ij, v_j in zip(row, v)) for row in M]
+    return [sum(m_ij * v_j for m_ij, v_j in zip(row, v, strict=True)) for row in M]
 
 
 def determinant(M):
@@ -88,7 +88,7 @@ def inverse(M) -> list | None:
         for r in range(n):
             if r != col and a[r][col] != 0.0:
                 f = a[r][col]
-                a[r] = [v - f * w for v, w in zip(a[r], a[col])]
+                a[r] = [v - f * w for v, w in zip(a[r], a[col], strict=True)]
     inv = [row[n:] for row in a]
     return inv if all(math.isfinite(v) for row in inv for v in row) else None
 
@@ -138,7 +138,7 @@ class Frame:
         """The frame of the segment; a message if a tangent does not point along the chord."""
         x_a, x_b = [float(v) for v in x_a], [float(v) for v in x_b]
         t_a, t_b = [float(v) for v in t_a], [float(v) for v in t_b]
-        d = [b - a for a, b in zip(x_a, x_b)]
+        d = [b - a for a, b in zip(x_a, x_b, strict=True)]
         length = math.sqrt(sum(di * di for di in d))
         if not (length > 0.0 and math.isfinite(length)):
             return f"its points coincide or are not finite (chord length {length!r})"
@@ -157,8 +157,10 @@ class Frame:
         m_a = [t_a[j] / along_a - v[j] for j in axes]
         m_b = [t_b[j] / along_b - v[j] for j in axes]
         # cubic Hermite through (0, 0, m_a) and (L, c_b, m_b), in powers of tau
-        a2 = [(3.0 * cb / length - 2.0 * ma - mb) / length for cb, ma, mb in zip(c_b, m_a, m_b)]
-        a3 = [(ma + mb - 2.0 * cb / length) / length ** 2 for cb, ma, mb in zip(c_b, m_a, m_b)]
+        a2 = [(3.0 * cb / length - 2.0 * ma - mb) / length
+              for cb, ma, mb in zip(c_b, m_a, m_b, strict=True)]
+        a3 = [(ma + mb - 2.0 * cb / length) / length ** 2
+              for cb, ma, mb in zip(c_b, m_a, m_b, strict=True)]
         return cls(x_a, v, p, axes, length, [[0.0] * len(axes), m_a, a2, a3])
 
     @classmethod
@@ -166,7 +168,7 @@ class Frame:
         """The frame of a segment too short for its chord's direction to be known (its points
         are only known to rounding): along the mean tangent, the centerline a straight line
         to the second point (the curve is off it by ``kappa L^2``)."""
-        t = [a + b for a, b in zip(t_a, t_b)]
+        t = [a + b for a, b in zip(t_a, t_b, strict=True)]
         size = math.sqrt(sum(tj * tj for tj in t))
         v = [tj / size for tj in t]
         p = max(range(len(v)), key=lambda j: abs(v[j]))
@@ -196,7 +198,7 @@ class Frame:
 
     def tube_box(self, tau, y) -> list:
         """``x_a + tau v + (c(tau) + y)`` along the axes, for a number ``tau`` and offsets ``y``."""
-        return self.point(tau, [ci + yi for ci, yi in zip(self._c(tau), y)])
+        return self.point(tau, [ci + yi for ci, yi in zip(self._c(tau), y, strict=True)])
 
     def columns(self, J) -> list:
         """``H' N``: the columns of ``J`` of the axes (the derivative along the offsets)."""
@@ -206,7 +208,7 @@ class Frame:
         """The centerline ``x_a + tau v + c(tau)`` as jets: value, first and second derivative."""
         p = self.point(tau, self._c(tau))
         p1 = self.point(0.0, self._c(tau, 1))
-        p1 = [p1j - x0 + vj for p1j, x0, vj in zip(p1, self.x_a, self.v)]
+        p1 = [p1j - x0 + vj for p1j, x0, vj in zip(p1, self.x_a, self.v, strict=True)]
         c2 = self._c(tau, 2)
         p2 = [0.0] * len(p)
         for k, j in enumerate(self.axes):
@@ -229,7 +231,7 @@ class Frame:
         tau = (B.number(box[self.p]) - self.x_a[self.p]) / self.v[self.p]
         c = self._c(tau)
         return tau, [box[j] - self.x_a[j] - tau * self.v[j] - ck
-                     for ck, j in zip(c, self.axes)]
+                     for ck, j in zip(c, self.axes, strict=True)]
 
 
 @dataclass(frozen=True)
@@ -275,12 +277,13 @@ def _contraction(frame, B, J, A) -> list:
 
 def _image(AG, bounds, radii, B) -> list:
     """``K = -A G + (I - A H' N) Y`` with ``|Y_j| <= radii[j]``, from the entry bounds."""
-    return [-AG[i] + B.error(sum(b * r for b, r in zip(bounds[i], radii)) * (1.0 + 1e-12))
+    return [-AG[i] + B.error(sum(b * r for b, r in zip(bounds[i], radii, strict=True))
+                             * (1.0 + 1e-12))
             for i in range(len(AG))]
 
 
 def _inside(K, radii, B) -> bool:
-    return all(B.error(r).contains_interior(k) for k, r in zip(K, radii))
+    return all(B.error(r).contains_interior(k) for k, r in zip(K, radii, strict=True))
 
 
 def _needed(steps, bounds, floor: float) -> list | None:
@@ -292,7 +295,7 @@ def _needed(steps, bounds, floor: float) -> list | None:
     if Minv is None:
         return None
     rhs = [1.001 * s + floor for s in steps]
-    radii = [1.01 * sum(m * r for m, r in zip(row, rhs)) for row in Minv]
+    radii = [1.01 * sum(m * r for m, r in zip(row, rhs, strict=True)) for row in Minv]
     return radii if all(r > 0.0 and math.isfinite(r) for r in radii) else None
 
 
@@ -320,7 +323,7 @@ def _residual_form(problem, frame, B, lo: float, hi: float):
     offset = B.error(half)
     square = B.arb(0.5 * half * half, 0.5 * half * half) * (1.0 + 1e-12)
     G = []
-    for h0, d, g2 in zip(H0, slope, over):
+    for h0, d, g2 in zip(H0, slope, over, strict=True):
         dd = g2.dd if type(g2) is Jet else 0.0
         G.append(h0 + d * offset + 0.5 * dd * square)
     return T, G
@@ -359,12 +362,12 @@ def solve_piece(problem, frame, B, lo: float, hi: float, max_radius: float,
         if need is None:
             return Failure(f"Krawczyk's operator does not contract (|I - A H'N| = "
                            f"{contraction:.3g})", contraction)
-        if all(n_ <= r for n_, r in zip(need, radii)):
+        if all(n_ <= r for n_, r in zip(need, radii, strict=True)):
             # a thinner tube inside this one: the bounds of H' over this one still hold
             K = _image(AG, bounds, need, B)
             if _inside(K, need, B):
                 return Piece(lo, hi, need, T, K, frame.tube_box(T, K), J, A, bounds)
-        radii = [max(r, 1.2 * n_) for r, n_ in zip(radii, need)]
+        radii = [max(r, 1.2 * n_) for r, n_ in zip(radii, need, strict=True)]
     return Failure("Krawczyk's test fails at every radius tried")
 
 
@@ -385,7 +388,7 @@ def solve_slice(problem, frame, B, piece: Piece, tau: float, tolerance: float):
         return "Krawczyk's operator does not contract on its slice"
     if not max(radii) <= tolerance:
         return f"the nearest zero is about {max(steps):.3g} away, more than {tolerance:.3g}"
-    if not all(r < R for r, R in zip(radii, piece.radii)):
+    if not all(r < R for r, R in zip(radii, piece.radii, strict=True)):
         return "its zero is not inside the tube"
     K = _image(AH, piece.bounds, radii, B)
     if not _inside(K, radii, B):
@@ -434,7 +437,7 @@ def square_box(F, DF, x_hat, B, tolerance: float):
     if A is None:
         return "its Jacobian is singular or not finite"
     step = _matvec(A, [float(v) for v in F(x_hat, FLOATS)])
-    centre = [x - s for x, s in zip(x_hat, step)]
+    centre = [x - s for x, s in zip(x_hat, step, strict=True)]
     scale = max(1.0, max(abs(c) for c in centre))
     found = _square_test(F, DF, A, [B.number(c) for c in centre], B, tolerance, 1e-15 * scale)
     if not isinstance(found, str):
@@ -443,10 +446,10 @@ def square_box(F, DF, x_hat, B, tolerance: float):
         balls_ = [B.number(c) for c in centre]
         for _ in range(4):  # Newton's method (chord steps) at 128 bits
             step = _matvec(A, F(balls_, B))
-            balls_ = [B.number(c - d).mid() for c, d in zip(balls_, step)]
+            balls_ = [B.number(c - d).mid() for c, d in zip(balls_, step, strict=True)]
         radius = _square_test(F, DF, A, balls_, B, tolerance, 1e-30 * scale)
         if isinstance(radius, str):
             return found
         rounded = [float(c) for c in balls_]
-        slack = max(_upper(c - r) for c, r in zip(balls_, rounded))
+        slack = max(_upper(c - r) for c, r in zip(balls_, rounded, strict=True))
     return rounded, radius + slack

@@ -81,7 +81,7 @@ def lu_determinant(lu: np.ndarray, piv: np.ndarray) -> float:
     det = 1.0
     swaps = 0
     # on Python floats and ints: indexing numpy scalars one by one costs more than the product
-    for i, (diagonal, pivot) in enumerate(zip(lu.diagonal().tolist(), piv.tolist())):
+    for i, (diagonal, pivot) in enumerate(zip(lu.diagonal().tolist(), piv.tolist(), strict=True)):
         det *= diagonal
         swaps += pivot != i
     return float(-det if swaps % 2 else det)

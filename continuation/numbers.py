@@ -59,7 +59,7 @@ def _float_sinc_derivatives(u: float):
 def _float_gauss(n: int, panels: int = 1) -> tuple:
     nodes, weights = np.polynomial.legendre.leggauss(n)
     return tuple(((p + 0.5 * (1.0 + float(t))) / panels, 0.5 * float(w) / panels)
-                 for p in range(panels) for t, w in zip(nodes, weights))
+                 for p in range(panels) for t, w in zip(nodes, weights, strict=True))
 
 
 class _Floats:
@@ -216,7 +216,7 @@ def balls() -> _Balls:
 
 
 class Jet:
-    """A number with its first (``d``) and optionally second (``dd``) derivative along one direction.
+    """A number with its first (``d``) and optional second (``dd``) derivative in one direction.
 
     ``v``, ``d`` and ``dd`` are base numbers (floats or balls); ``dd`` is ``None`` for
     first-order jets. Comparisons and ``abs`` act on the value (for branches only).

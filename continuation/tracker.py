@@ -628,7 +628,8 @@ def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
 
 
 def _located_x(located: Located) -> np.ndarray:
-    return located.node.x if located.node is not None else located.correction.x
+    # a Located without a node carries its correction
+    return located.node.x if located.node is not None else cast(Correction, located.correction).x
 
 
 def _locate_order(event: Event, j: int, lo: Node, hi: Node, f_lo: float, f_hi: float):
@@ -654,7 +655,7 @@ def _located_node(run: _Run, located: Located) -> Node:
     """A located point as a node with its event values (a bracket's end, or a new node)."""
     if located.node is not None:
         return located.node
-    c = located.correction
+    c = cast(Correction, located.correction)  # a Located without a node carries its correction
     return Node(c.x, located.s, c.tangent, c.det, c.residual, c.iterations,
                 [event_value(e, c.x, run.problem.describe) for e in run.events])
 

@@ -47,7 +47,7 @@ class Function:
     def slope(self, box, k, problem, B):
         """Enclosure of ``D phi [k]`` over ``box`` for kernel vectors in ``k``."""
         J2 = jets(B)
-        x = [Jet(b, kj) for b, kj in zip(box, k)]
+        x = [Jet(b, kj) for b, kj in zip(box, k, strict=True)]
         if self.event is not None:
             value = self.event.function(x, J2)
         else:

@@ -38,7 +38,7 @@ def test_every_boundary_is_proven(certified):
 
 
 def test_what_is_not_covered_is_stated(certified):
-    for name, curve in certified.curves.items():
+    for _name, curve in certified.curves.items():
         excluded = curve.certificate.excluded
         if curve.end.value == "corner":
             assert [e.radius for e in excluded] == [0.0]  # nothing excluded at the corner

@@ -7,7 +7,6 @@ import re
 import pytest
 
 from groove_model.cli.main import main
-
 from groove_model.model.equilibrium import solve_equilibrium
 
 KEYS = {"k", "compliance", "regime", "rotation", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R",

@@ -8,9 +8,9 @@ import pytest
 from groove_model.model.dimensional import dimensional_state
 from groove_model.model.equilibrium import (
     double_rolling_equation,
-    wall_terms,
     regime_validity,
     solve_equilibrium,
+    wall_terms,
 )
 from groove_model.model.parameters import Compliance, Parameters
 

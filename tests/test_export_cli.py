@@ -8,7 +8,6 @@ import pandas as pd
 import pytest
 
 from groove_model import tracing as tracer_module
-from groove_model.model.boundaries import BoundarySystem
 from groove_model.cli.main import main
 from groove_model.cli.trace import overlay_name
 from groove_model.io.export import (
@@ -17,6 +16,7 @@ from groove_model.io.export import (
     read_boundaries_csv,
     write_boundary_set,
 )
+from groove_model.model.boundaries import BoundarySystem
 from groove_model.model.parameters import Parameters
 from groove_model.tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, trace_boundaries
 

@@ -8,10 +8,9 @@ import re
 import numpy as np
 import pytest
 
-from groove_model.tracing import topology
 from groove_model.model.parameters import Compliance, Parameters
+from groove_model.tracing import DEFAULT_OPTIONS, Where, topology, trace_boundaries
 from groove_model.tracing.topology import expected_topology, format_table, thresholds
-from groove_model.tracing import DEFAULT_OPTIONS, Where, trace_boundaries
 
 
 @pytest.mark.parametrize("c", [0.5, 2.0 / 3.0, 1.0, 1.7])

@@ -75,7 +75,7 @@ def remove_stale_temporaries(directory) -> list[Path]:
     """
     directory = Path(directory)
     owner, me = _owner(), os.getpid()
-    removed = []
+    removed: list[Path] = []
     try:
         entries = list(os.scandir(directory))
     except OSError as exc:

@@ -7,16 +7,16 @@ Each boundary is the zero set of three equations in ``x = (gamma, delta, beta_L,
 the compliance ratio, the equations are written multiplied out, with no division by
 ``sin theta_R`` or ``sin beta`` (the paper's Eqs. tran1 and tran2 are these divided through):
 
-=================  ===========================================================  ============
-equation           expression                                                   meaning
-=================  ===========================================================  ============
-torque (DR)        ``q_L A - q_R B``                                            ``T_L = T_R``
-horizontal (DR)    ``n_L sin theta_L - n_R sin theta_R + c q_L A D``            paper Eq. 2
-right rolls (RS)   ``c q_R B - k n_L``                                          ``T = k N_L``
-horizontal (RS)    ``n_L (sin theta_L + k D) - n_R sin theta_R``                Eq. 2, ``T = k N_L``
-limit              ``c A - k s_L``                                              ``T/N_L = k``, ``d_L = 0``
-no roll            ``upsilon``                                                  ``upsilon = 0``
-=================  ===========================================================  ============
+=================  =================================================  ==========================
+equation           expression                                         meaning
+=================  =================================================  ==========================
+torque (DR)        ``q_L A - q_R B``                                  ``T_L = T_R``
+horizontal (DR)    ``n_L sin theta_L - n_R sin theta_R + c q_L A D``  paper Eq. 2
+right rolls (RS)   ``c q_R B - k n_L``                                ``T = k N_L``
+horizontal (RS)    ``n_L (sin theta_L + k D) - n_R sin theta_R``      Eq. 2, ``T = k N_L``
+limit              ``c A - k s_L``                                    ``T/N_L = k``, ``d_L = 0``
+no roll            ``upsilon``                                        ``upsilon = 0``
+=================  =================================================  ==========================
 
 ``dr_limit`` = (torque, horizontal DR, limit); ``rs_limit`` = (right rolls, horizontal RS, limit);
 ``dr_no_roll`` = (torque, horizontal DR, no roll); ``rs_no_roll`` = (right rolls, horizontal RS,
@@ -82,7 +82,7 @@ class Condition(str, enum.Enum):
 
 
 def _left_contact(var, chart: str, m):
-    """``beta_L``, ``q_L = sqrt(sin beta_L)`` and their derivatives with respect to the chart variable.
+    """``beta_L``, ``q_L = sqrt(sin beta_L)`` and their derivatives w.r.t. the chart variable.
 
     In the ``"beta_L"`` chart the variable is ``beta_L`` itself and ``d q_L / d beta_L =
     cos beta_L / (2 q_L)`` is unbounded as ``beta_L -> 0``. In the ``"sqrt_beta_L"`` chart the
@@ -227,7 +227,7 @@ def _limit_rows(x, k, c, chart, m, jacobian, unit):
 
 @dataclass(frozen=True)
 class BoundarySystem:
-    """One regime boundary as ``H(x) = 0``, ``H: R^4 -> R^3``, ``x = (gamma, delta, beta_L, upsilon)``.
+    """One regime boundary ``H(x) = 0``, ``H: R^4 -> R^3``, ``x = (gamma, delta, beta_L, upsilon)``.
 
     Attributes
     ----------
@@ -460,15 +460,17 @@ def limit_seed(params: Parameters) -> np.ndarray:
 
 
 def dr_no_roll_branch_point() -> np.ndarray:
-    """``(arctan sqrt 2, 0, arctan(1/sqrt 2), 0)``: where ``dr_no_roll`` leaves the symmetric family.
+    """``(arctan sqrt 2, 0, arctan(1/sqrt 2), 0)``: where ``dr_no_roll`` leaves the symmetric
+    family.
 
     Notes
     -----
     On the symmetric family ``beta_L = beta_R = beta`` the torque equation with ``upsilon = 0``
     is ``f(beta_L) = f(beta_R)``, ``f(beta) = sqrt(sin beta) cos beta``. Perturbing
-    antisymmetrically, ``beta_{L,R} = beta +- e``, its linear part is ``2 f'(beta) e``, so a second
-    branch can leave only where ``f'(beta) = cos^2 beta / (2 sqrt(sin beta)) - sin^(3/2) beta = 0``,
-    that is ``tan beta = 1/sqrt 2``, ``gamma = pi/2 - beta = arctan sqrt 2``, for any ``k`` and ``c``.
+    antisymmetrically, ``beta_{L,R} = beta +- e``, its linear part is ``2 f'(beta) e``, so a
+    second branch can leave only where
+    ``f'(beta) = cos^2 beta / (2 sqrt(sin beta)) - sin^(3/2) beta = 0``, that is
+    ``tan beta = 1/sqrt 2``, ``gamma = pi/2 - beta = arctan sqrt 2``, for any ``k`` and ``c``.
     """
     return _symmetric_point(math.atan(math.sqrt(2.0)))
 

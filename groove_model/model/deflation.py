@@ -1,4 +1,4 @@
-r"""The deflated no-roll torque of ``dr_no_roll``: a divided difference, written once for any numbers.
+r"""Deflated no-roll torque of ``dr_no_roll``: a divided difference written once for any numbers.
 
 With ``upsilon = 0`` the double-rolling torque is ``f(beta_L) - f(beta_R)``,
 ``f(beta) = sqrt(sin beta) cos beta``; it vanishes on the whole symmetric family
@@ -54,7 +54,7 @@ NODES = {False: 6, True: 12}
 
 
 def _gauss_constant(n: int) -> float:
-    """``(n!)^4 / ((2n + 1) ((2n)!)^3)``, the Gauss-Legendre error constant on [0, 1], rounded up."""
+    """``(n!)^4 / ((2n + 1) ((2n)!)^3)``: Gauss-Legendre error constant on [0, 1], rounded up."""
     exact = Fraction(math.factorial(n) ** 4, (2 * n + 1) * math.factorial(2 * n) ** 3)
     value = float(exact)
     return value if Fraction(value) >= exact else math.nextafter(value, math.inf)

@@ -2,8 +2,9 @@
 
 :func:`trace_boundaries` follows every boundary of one ``k`` with the continuation engine and
 returns a :class:`BoundarySet`; :func:`trace_many` does it for many ``k`` (in parallel with
-``jobs`` or on any ``concurrent.futures`` executor) and returns one table; :func:`~groove_model.tracing.topology.expected_topology` says
-what each boundary must look like for that ``k``.
+``jobs`` or on any ``concurrent.futures`` executor) and returns one table;
+:func:`~groove_model.tracing.topology.expected_topology` says what each boundary must look like
+for that ``k``.
 """
 
 from .curves import (

@@ -14,6 +14,7 @@ import enum
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -140,9 +141,10 @@ def _end_role(curve: Curve, tagged: list[Tagged], x_end) -> Role | None:
     """The role of the terminal event that ended the curve (``CORNER`` for any end at it)."""
     if _at_corner(x_end):
         return Role.CORNER
+    # an event point's ``event`` is the event's position (an int)
     ends = [p for p in curve.special_points if p.kind is SpecialKind.EVENT
-            and p.index == len(curve) - 1 and tagged[p.event].event.terminal]
-    return tagged[ends[-1].event].role if ends else None
+            and p.index == len(curve) - 1 and tagged[cast(int, p.event)].event.terminal]
+    return tagged[cast(int, ends[-1].event)].role if ends else None
 
 
 _END_OF_ROLE = {Role.CORNER: Where.CORNER, Role.GAMMA_MIN: Where.GAMMA_MIN,
@@ -189,14 +191,15 @@ def _engine_marks(curve: Curve, physical: np.ndarray, tagged: list[Tagged],
                 continue
             coordinate = "gamma" if p.coordinate == 0 else "delta"
             marks.add(p.index, _FOLD_KINDS[p.coordinate], f"turning point in {coordinate}")
-        elif p.kind is SpecialKind.EVENT and tagged[p.event].role is Role.VALIDITY:
+        elif p.kind is SpecialKind.EVENT and tagged[cast(int, p.event)].role is Role.VALIDITY:
             # A cut point: the physical part ends (or begins) here only if the physical flag
             # changes across it; a validity function that crosses zero while another one is
             # still violated (or touches zero) cuts nothing.
             i = p.index
             before = physical[i - 1] if i > 0 else False
             after = physical[i + 1] if i + 1 <= last else False
-            condition = tagged[p.event].condition
+            # a validity event carries the condition it checks
+            condition = cast(Condition, tagged[cast(int, p.event)].condition)
             if before and not after:
                 marks.add(i, PointKind.END, f"regime limit: {condition} fails beyond")
                 marks.limits[i] = condition
@@ -218,7 +221,8 @@ def _physical_end(curve: Curve, tagged: list[Tagged], physical: np.ndarray, x: n
         return Where.JUNCTION if marks.limits[last] is Condition.T_OVER_N_L \
             else Where.REGIME_LIMIT
     if last == len(x) - 1:
-        return _END_OF_ROLE.get(_end_role(curve, tagged, x[-1]), Where.NOWHERE)
+        role = _end_role(curve, tagged, x[-1])
+        return _END_OF_ROLE.get(role, Where.NOWHERE) if role is not None else Where.NOWHERE
     return Where.REGIME_LIMIT
 
 

@@ -45,11 +45,20 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
-from continuation import Codim2Curve, Codim2Kind, Event, Options, follow_event, follow_fold
+from continuation import (
+    Codim2Curve,
+    Codim2Kind,
+    Codim2Point,
+    Event,
+    Options,
+    SpecialPoint,
+    follow_event,
+    follow_fold,
+)
 
 from ..model.boundaries import Condition
 from ..model.parameters import Compliance, check_friction
@@ -209,7 +218,7 @@ class AtlasCurve:
         Empty where the curve does not exist.
         """
         p = self.axis.to_p(value)
-        found = []
+        found: list[np.ndarray] = []
         for trace in self.traces:
             for z in trace.at(p):
                 x = self.family.to_x(z)[0]
@@ -356,7 +365,8 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
         If ``k`` or the range is invalid (``-1 < nu_min < nu_max <= 1/2``).
     """
     k = check_friction(k)
-    nu_min, nu_max = (Compliance.from_poisson(nu).poisson for nu in nu_range)
+    # from_poisson records the checked Poisson ratio (never None)
+    nu_min, nu_max = (cast(float, Compliance.from_poisson(nu).poisson) for nu in nu_range)
     if not nu_min < nu_max:
         raise ValueError(f"nu_range = {tuple(nu_range)!r} must satisfy nu_min < nu_max")
     return _trace(Axis("nu", k), nu_min, nu_max, (nu_min, nu_max), options or POISSON_OPTIONS)
@@ -368,7 +378,7 @@ class _Start:
     boundary: str
     kind: PointKind
     family: BoundaryFamily
-    point: object
+    point: SpecialPoint
     p: float
     coordinate: int | None
 
@@ -453,7 +463,7 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
     thresholds = [t for start, trace in followed
                   for t in _thresholds(start, trace, len(_events(start)))]
     thresholds.sort(key=lambda t: t.value)
-    return Atlas(axis=axis, range=tuple(float(v) for v in value_range), curves=curves,
+    return Atlas(axis=axis, range=(float(value_range[0]), float(value_range[1])), curves=curves,
                  thresholds=tuple(thresholds), failures=tuple(failures),
                  seconds=time.perf_counter() - began)
 
@@ -481,7 +491,7 @@ def _thresholds(start: _Start, trace: Codim2Curve, n_events: int) -> list[Thresh
                       and p.event >= n_events)]
     # a terminal event first: it is the threshold, a monitor vanishing with it is "also"
     points.sort(key=lambda p: (not p.terminal, p.index))
-    merged: list[tuple] = []
+    merged: list[list[Codim2Point]] = []
     for point in points:
         for group in merged:
             lead = group[0]
@@ -497,8 +507,8 @@ def _thresholds(start: _Start, trace: Codim2Curve, n_events: int) -> list[Thresh
 def _threshold(start: _Start, group: list, axis: Axis, family: BoundaryFamily) -> Threshold:
     lead = group[0]
     event = lead.name if lead.kind is Codim2Kind.EVENT else lead.kind.value
-    short, what = _KNOWN.get((start.name, event), (None, None))
-    if short is None:
+    known = _KNOWN.get((start.name, event))
+    if known is None:
         short = f"{start.name}: {event}"
         what = {Codim2Kind.CUSP: f"two folds ({start.name}) meet and vanish (a cusp)",
                 Codim2Kind.TANGENCY: "two junctions meet and vanish (a tangency)",
@@ -506,13 +516,15 @@ def _threshold(start: _Start, group: list, axis: Axis, family: BoundaryFamily) -
                                          "points"}.get(lead.kind, f"{start.name} meets {event}")
         name = short
     else:
+        short, what = known
         name = f"{axis.name}_{short}"
     base = _EQUATIONS[start.boundary if start.kind is not PointKind.JUNCTION else "dr_no_roll"]
     if start.kind is PointKind.JUNCTION:
         extra = ("T/N_L = k: c (cos beta_L + upsilon) - k sin beta_L = 0",)
     else:
         other = "(delta, w, upsilon)" if start.coordinate == 0 else "(gamma, w, upsilon)"
-        extra = (f"fold in {_FOLD_NAMES[start.coordinate]}: the Jacobian in {other} is "
+        # a fold's start has its coordinate (the junction's alone has None)
+        extra = (f"fold in {_FOLD_NAMES[cast(int, start.coordinate)]}: the Jacobian in {other} is "
                  "singular (minimally augmented test g = 0)",)
     equations = (*base, *extra, lead.equations[-1])
     return Threshold(name=name, value=float(axis.value(lead.p)), x=family.to_x(lead.z)[0],

@@ -76,7 +76,7 @@ def _rows_on_curve(curve: BoundaryCurve, certificate: Certificate, system, first
     boxes: dict = {}
     for p in certificate.special_points:
         boxes.setdefault(p.index + first, []).append(p)
-    for i, (row, x) in enumerate(zip(curve.engine_rows, curve.x)):
+    for i, (row, x) in enumerate(zip(curve.engine_rows, curve.x, strict=True)):
         y = system.from_x(x)
         scale = 1.0 + float(np.max(np.abs(y)))
         moved = float(np.max(np.abs(y - engine.x[row])))

@@ -21,6 +21,8 @@ from ..model.parameters import Parameters
 if TYPE_CHECKING:  # pandas is imported where a table is made: `groove atlas` needs none
     import pandas as pd
 
+    from continuation import Certificate
+
 __all__ = [
     "CSV_COLUMNS",
     "SPECIAL_POINT_COLUMNS",
@@ -81,9 +83,10 @@ class Where(str, enum.Enum):
 
 
 class TraceError(RuntimeError):
-    """A boundary could not be traced; ``boundary_set`` holds everything that was traced."""
+    """A boundary could not be traced; ``boundary_set`` holds everything that was traced
+    (``None`` on a sweep's ``SweepError``, which holds its ``results`` instead)."""
 
-    def __init__(self, message: str, boundary_set: BoundarySet) -> None:
+    def __init__(self, message: str, boundary_set: BoundarySet | None) -> None:
         super().__init__(message)
         self.boundary_set = boundary_set
 
@@ -163,7 +166,7 @@ class BoundaryCurve:
     end: Where = Where.NOWHERE
     engine_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int), repr=False,
                                     compare=False)
-    certificate: object = field(default=None, repr=False, compare=False)
+    certificate: Certificate | None = field(default=None, repr=False, compare=False)
 
     @property
     def certified(self) -> bool | None:

@@ -109,7 +109,7 @@ def _workers(jobs, executor) -> int:
 
 
 def _in_order(executor, function, chunks: list, window: int, args: tuple) -> Iterator[list]:
-    """``function(chunk, *args)`` for every chunk on ``executor``, in order, ``window`` at a time."""
+    """``function(chunk, *args)`` for each chunk on ``executor``, in order, ``window`` at a time."""
     pending: collections.deque = collections.deque()
     remaining = iter(chunks)
     try:

@@ -103,7 +103,7 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     worst = 0.0
     # norms on Python floats (the same numbers as np.linalg.norm, a fraction of its overhead)
-    for x, y in zip(rs.x, system.from_x(rs.x)):
+    for x, y in zip(rs.x, system.from_x(rs.x), strict=True):
         for _ in range(20):
             H, J = system.residual_and_jacobian(y)
             _, _, multipliers, info = dgesv(J @ J.T, H)
@@ -344,6 +344,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
                          f"0 < gamma_min < arctan(k/c) = {params.gamma_limit!r}")
     job = _Job(params, options, gamma_min, keep_unphysical)
     expected = expected_topology(params)
+    curves: dict[str, BoundaryCurve]
     if expected["dr_no_roll"].present is False and not keep_unphysical:
         # below k_branch the atlas has no junction: dr_no_roll has no physical part
         curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "

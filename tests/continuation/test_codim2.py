@@ -5,8 +5,18 @@ import math
 import numpy as np
 import pytest
 
-from continuation import (Codim2Kind, Event, Family, Options, SpecialKind, box_events,
-                          check_jacobian, follow_event, follow_fold, trace)
+from continuation import (
+    Codim2Kind,
+    Event,
+    Family,
+    Options,
+    SpecialKind,
+    box_events,
+    check_jacobian,
+    follow_event,
+    follow_fold,
+    trace,
+)
 from continuation.augmented import BORDER_QUALITY, EventSystem, FoldSystem
 
 OPTIONS = Options(tol=1e-12)

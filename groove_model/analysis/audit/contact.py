@@ -25,7 +25,7 @@ def _numbers(study) -> dict:
     """Scalars: compliance ratios, thresholds and their ratios, the largest shifts; per ``k``:
     the thresholds in ``nu`` and how far each special point moves."""
     reference = study.thresholds[study.reference]
-    numbers = {}
+    numbers: dict[str, object] = {}
     for nu, values in study.thresholds.items():
         numbers[f"c(nu = {nu:g})"] = Compliance.from_poisson(nu).ratio
         for name, value in values.items():
