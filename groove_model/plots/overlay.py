@@ -38,10 +38,12 @@ MARKER_LABELS = {
     "end": "end of a boundary",
     "junction": "junction of the limit and a no-rotation line",
     "fold_gamma": r"turning point in $\gamma$",
+    "fold_delta": r"highest point ($\delta$ turns back)",
     "branch_point": r"branch point on the axis $\delta = 0$",
 }
 DIAGONAL_LABEL = r"edge $\delta = \gamma$ (right wall horizontal)"
-_MARKERS = {"start": "o", "end": "s", "junction": "D", "fold_gamma": "^", "branch_point": "*"}
+_MARKERS = {"start": "o", "end": "s", "junction": "D", "fold_gamma": "^", "fold_delta": "v",
+            "branch_point": "*"}
 # Okabe & Ito's colour-blind-safe palette.
 _COLOURS = ("#000000", "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9")
 _HALF_PI = 0.5 * math.pi
