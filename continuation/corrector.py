@@ -168,6 +168,7 @@ def correct(
        eigenvalue problems", in *Applications of Bifurcation Theory*,
        Academic Press, 1977, pp. 359-384.
     """
+    # kept whole: the hot path of every step, its iteration state held in locals for speed
     n1 = x_pred.size
     if target is None:
         target = float(border @ x_pred)

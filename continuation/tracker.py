@@ -397,19 +397,7 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
         raise ValueError(f"jacobian(x0) has shape {J.shape}, expected ({n1 - 1}, {n1})")
     if not np.isfinite(J).all():
         return None, Status.NON_FINITE, f"the Jacobian is not finite at the start {where}"
-    reference = None
-    if direction is not None and not isinstance(direction, (int, np.integer)):
-        reference = as_vector("direction", direction)
-        if reference.size != n1 or not np.any(reference):
-            raise ValueError(f"direction must be None, 1, -1 or a nonzero array of shape "
-                             f"({n1},), got {direction!r}")
-        sign = 1
-    else:
-        if direction not in (None, 1, -1):
-            raise ValueError(f"direction must be None, 1, -1 or an array of shape ({n1},), "
-                             f"got {direction!r}")
-        sign = 1 if direction is None else int(direction)
-
+    reference, sign = _orientation(direction, n1)
     if tangent is None:
         singular_values, basis = _svd(J)
         if singular_values[0] == 0 or singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
@@ -463,6 +451,26 @@ def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False)
         sign = 1 if dot > 0 else -1
     point = run.node(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations)
     return point, None, ""
+
+
+def _orientation(direction, n1: int) -> tuple[np.ndarray | None, int]:
+    """``(reference array or None, sign)`` from the ``direction`` argument of :func:`trace`.
+
+    Raises
+    ------
+    ValueError
+        If ``direction`` is not ``None``, 1, -1 or a nonzero array of shape ``(n1,)``.
+    """
+    if direction is not None and not isinstance(direction, (int, np.integer)):
+        reference = as_vector("direction", direction)
+        if reference.size != n1 or not np.any(reference):
+            raise ValueError(f"direction must be None, 1, -1 or a nonzero array of shape "
+                             f"({n1},), got {direction!r}")
+        return reference, 1
+    if direction not in (None, 1, -1):
+        raise ValueError(f"direction must be None, 1, -1 or an array of shape ({n1},), "
+                         f"got {direction!r}")
+    return None, 1 if direction is None else int(direction)
 
 
 def _svd(J: np.ndarray):

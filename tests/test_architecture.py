@@ -175,11 +175,25 @@ def _code_lines(function: ast.FunctionDef) -> int:
     return function.end_lineno - function.lineno + 1 - docstring
 
 
+def _kept_whole(function: ast.FunctionDef, lines: list[str]) -> bool:
+    """Whether the function's code opens with a comment ``# kept whole: <why>``."""
+    body = function.body
+    first = body[1] if len(body) > 1 and isinstance(body[0], ast.Expr) else body[0]
+    # the comment stands on the line(s) between the docstring and the first statement
+    above = lines[(body[0].end_lineno if first is not body[0] else function.lineno):
+                  first.lineno - 1]
+    return any(line.strip().startswith("# kept whole:") for line in above)
+
+
 def test_no_function_is_over_80_lines():
-    for name, path in GROOVE.items():
+    """No function over 80 lines without its docstring, unless it says why it stays whole."""
+    for name, path in {**GROOVE, **CONTINUATION}.items():
         if path.name in SIZE_EXEMPT:
             continue
+        lines = path.read_text().splitlines()
         for function in _functions(TREES[name]):
+            if _kept_whole(function, lines):
+                continue
             n = _code_lines(function)
             assert n <= MAX_FUNCTION_LINES, \
                 f"{path.relative_to(ROOT)}:{function.lineno} {function.name} has {n} lines"
