@@ -97,6 +97,18 @@ def test_help_and_solve_import_neither_scipy_nor_matplotlib():
     assert done.stdout.strip().splitlines()[-1] == "[] []"
 
 
+def test_atlas_command_imports_no_pandas(tmp_path):
+    # the atlas writes its CSV files with csv: pandas' import would cost a third of a second
+    code = ("import sys\n"
+            "from groove_model.cli import main\n"
+            "main(['atlas', '--k-min', '0.5', '--k-max', '2', '--no-figure',"
+            f" '--out', {str(tmp_path)!r}])\n"
+            "print('pandas' in sys.modules)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    assert done.stdout.strip().splitlines()[-1] == "False"
+
+
 def test_py_typed_marker_is_shipped():
     from importlib import resources
 

@@ -21,14 +21,16 @@ import math
 import os
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from continuation import Options
 
 from ..model.parameters import Compliance, Parameters
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
+
+if TYPE_CHECKING:  # pandas is imported where a table is made: `groove atlas` needs none
+    import pandas as pd
 
 __all__ = ["SweepError", "SweepResult", "sweep_results", "trace_many"]
 
@@ -232,6 +234,8 @@ def trace_many(ks: Iterable[float], jobs: int | None = None, *,
     results = list(sweep_results(ks, jobs=jobs, executor=executor,
                                  keep_unphysical=keep_unphysical, options=options,
                                  compliance=compliance, certify=certify))
+    import pandas as pd  # only the joined table needs it, not the traces
+
     failed = [r for r in results if not r.ok]
     if failed:
         raise SweepError("; ".join(f"k = {r.k!r}: {', '.join(r.failures)}" for r in failed),
