@@ -1,7 +1,8 @@
 """Certify every boundary over the CI sweep of k: ``python benchmarks/certify_sweep.py [--json OUT]``.
 
-The k values are those of ``tests/test_sweep_topology.py`` (342: 300 log-spaced in
-[1e-4, 1e6], the neighbours of k = 1/sqrt 2 and sqrt 2, values that once failed). For every k
+The k values are those of ``tests/test_sweep_topology.py`` (361: 300 log-spaced in
+[1e-4, 1e6], the neighbours of the thresholds k = 1/sqrt 2, sqrt 2 and k_cross, values that
+once failed). For every k
 the boundaries are traced and certified (``trace_boundaries(k, certify=True)``); the script
 prints how many boundaries were proven, and for each one not proven the k, the boundary and the
 reason, then the cost of certifying against tracing (CPU time, each k traced once without and
@@ -27,14 +28,17 @@ if __package__ in (None, ""):
 from groove_model.tracing import trace_boundaries  # noqa: E402
 
 SQRT2 = math.sqrt(2.0)
+#: where the junction passes the maximum of delta along dr_limit (the atlas's k_cross)
+K_CROSS = 15.19939619365445
 
 #: the k values of tests/test_sweep_topology.py
 SWEEP = sorted({
     *np.geomspace(1e-4, 1e6, 300).tolist(),
     *(SQRT2 * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
-    *(SQRT2 / 2 * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
+    *(1.0 / SQRT2 * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
+    *(K_CROSS * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
     14.4, 14.5, 32.7274, 32.72740209872818, 0.00013848863713938732, 1.4283556979968262,
-    1e4, 1e6,
+    1e4, 1e6, 0.09111627561154892,
 })
 
 
