@@ -166,3 +166,19 @@ def test_committed_atlas_results_are_reproduced(atlas):
             assert np.allclose(new[column], old[column], rtol=1e-9, atol=1e-11), column
     old = pd.read_csv(RESULTS / "atlas_thresholds.csv")
     assert np.allclose(old["value"], [t.value for t in atlas.thresholds], rtol=1e-12)
+
+
+@pytest.mark.parametrize("nu", [0.24495564743398962, 0.17522534680573087])
+def test_a_fold_unresolved_at_the_range_end_is_found_inside(nu):
+    # the fold in gamma of rs_no_roll is ~1/k^2 from the corner: at k_max = 1e6 c (c < 1 here)
+    # the tracer does not resolve it, and with seeds at the ends only the atlas lost the curve,
+    # its threshold k_fold and so the tracer's expected fold for every k (found by a random
+    # sweep in (k, nu): trace_boundaries failed, loudly, at k = 189.6, nu = 0.245)
+    c = Compliance.from_poisson(nu).ratio
+    table = thresholds(c)
+    assert [t.name for t in table.points] == ["k_fold", "k_branch", "k_cross"]
+    assert table.points[0].value == pytest.approx(c / SQRT2, rel=1e-12)
+    assert set(trace_atlas((1e-4 * c, 1e6 * c), compliance=c).curves) == set(TRACED)
+    bs = trace_boundaries(Parameters(189.6420639321449, compliance=Compliance(c)))
+    assert bs.ok, bs.failures
+    assert len(bs.curves["rs_no_roll"].special("fold_gamma")) == 1

@@ -32,11 +32,14 @@ event's), each reported with its equations (:class:`Threshold`):
 * two folds meet at a cusp, two junctions at a tangency (turning points of the curves in
   ``p``); none occurs for the paper's compliance.
 
-Where a curve is found: each boundary is traced (as the tracer does) at both ends of the range,
-its folds and junction are the starting points, and each is followed towards the other end or
-until it dies; a point already on a followed curve is not followed again. A special point that
-is born and dies strictly inside the range would be missed: :mod:`~.topology` is checked against
-a bisection on the per-``k`` topology in the tests.
+Where a curve is found: each boundary is traced (as the tracer does) at both ends of the range
+and, in ``k``, at ``k = 10 c`` inside it (where every special point of the paper's topology
+exists and is well conditioned; at an end one can sit within rounding of a boundary's end and
+go unseen); its folds and junction are the starting points, and each is followed towards the
+other end or until it dies (both ways from the inner seed); a point already on a followed curve
+is not followed again. A special point that is born and dies strictly inside the range, away
+from ``k = 10 c``, would be missed: :mod:`~.topology` is checked against a bisection on the
+per-``k`` topology in the tests, and the tracer checks every curve against it.
 """
 
 from __future__ import annotations
@@ -414,12 +417,20 @@ def _events(start: _Start) -> list[Event]:
 
 
 def _covered(start: _Start, followed: list) -> bool:
-    """Whether a followed curve of the same kind passes through ``start``."""
+    """Whether a followed curve of the same kind passes through ``start``: one of its points,
+    or its point(s) at ``start.p`` corrected onto it, within ``SAME_POINT``."""
     z = np.append(start.point.x, start.p)
+    tolerance = SAME_POINT * (1.0 + np.abs(z).max())
     for other, trace in followed:
         if (other.boundary, other.kind) != (start.boundary, start.kind):
             continue
-        if np.any(np.max(np.abs(trace.z - z), axis=1) <= SAME_POINT * (1.0 + np.abs(z).max())):
+        if np.any(np.max(np.abs(trace.z - z), axis=1) <= tolerance):
+            return True
+        try:
+            points = trace.at(start.p)
+        except ValueError:  # p stationary on the curve there (a cusp or tangency)
+            points = []
+        if any(np.max(np.abs(q - z)) <= tolerance for q in points):
             return True
     return False
 
@@ -443,17 +454,22 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
     followed: list[tuple[_Start, Codim2Curve]] = []
     starts: dict[str, _Start] = {}
     failures = []
-    for p, direction in ((p_hi, -1), (p_lo, 1)):
+    seeds = [(p_hi, (-1,)), (p_lo, (1,))]
+    inner = _inner_seed(axis, p_lo, p_hi)
+    if inner is not None:
+        seeds.append((inner, (-1, 1)))
+    for p, directions in seeds:
         for start in _starts(families, p):
             if _covered(start, followed):
                 continue
             if start.name in starts:
                 start.name = f"{start.name}_{len(starts) + 1}"
             starts[start.name] = start
-            trace = _follow(start, direction, (p_lo, p_hi), options)
-            followed.append((start, trace))
-            if not trace.ok:
-                failures.append(f"{start.name}: {trace.message}")
+            for direction in directions:
+                trace = _follow(start, direction, (p_lo, p_hi), options)
+                followed.append((start, trace))
+                if not trace.ok:
+                    failures.append(f"{start.name}: {trace.message}")
     # a fixed order: the junction, then the folds by boundary and coordinate
     order = sorted(starts.items(), key=lambda item: (
         item[1].kind is not PointKind.JUNCTION, _BOUNDARIES.index(item[1].boundary),
@@ -468,11 +484,29 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
                  seconds=time.perf_counter() - began)
 
 
+def _inner_seed(axis: Axis, p_lo: float, p_hi: float) -> float | None:
+    """A third place to look for special points, inside the range, or ``None``.
+
+    In ``k``: ``k = 10 c``, where every special point of the paper's topology exists (above
+    ``k_branch = c sqrt 2``) and is well conditioned. At the ends of a wide range one can sit
+    within rounding of a boundary's end and go unseen (the fold in ``gamma`` of ``rs_no_roll``
+    is ``~1/k^2`` from the corner: at ``k = 8.6e5`` the tracer does not resolve it), and the
+    curve through it would be missed. A point found here is followed both ways.
+    """
+    if axis.name != "k":
+        return None
+    p = math.log(10.0 * axis.fixed)
+    return p if p_lo < p < p_hi else None
+
+
 def _curve(start: _Start, traces: list[Codim2Curve]) -> AtlasCurve:
     """The rows of one curve, in increasing ``p`` from its lower end."""
     rows = []
+    # increasing p: a start inside the range is followed both ways (down, then up from it)
     for trace in traces:
         z = trace.z[::-1] if len(trace) > 1 and trace.z[-1, -1] < trace.z[0, -1] else trace.z
+        if rows and len(z) and len(rows[-1]) and z[0, -1] == rows[-1][-1, -1]:
+            z = z[1:]  # the shared start
         rows.append(z)
     z = np.concatenate(rows) if rows else np.zeros((0, 5))
     family = start.family
