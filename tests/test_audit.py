@@ -404,3 +404,13 @@ def test_the_compliance_claim_holds_with_qualification_with_its_numbers(report):
     c = 1.0 / SQRT2
     assert numbers["k = 1"]["thresholds in nu"] == f"nu_branch = {2 * (1 - c) / (2 - c):.10g}"
     assert claim.counterexample.k == 1.0 and claim.counterexample.values["nu"] == 0.5
+
+
+def test_the_smallest_supported_k_is_audited_without_error_or_doubt():
+    # k = 1e-4 crashed (no gamma below arctan(k)/2 among fixed columns 1e-1 ... 1e-4), and the
+    # start of rs_no_roll was probed at deltas outside its linear part (inconclusive)
+    report = run_audit([1e-4])
+    verdicts = {c.id: c.verdict for c in report.claims}
+    assert "inconclusive" not in verdicts.values(), verdicts
+    assert verdicts["dr_limit_to_origin_along_diagonal"] == "holds"
+    assert verdicts["rs_no_roll_small_k_ends"] == "holds"

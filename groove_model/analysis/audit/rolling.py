@@ -281,16 +281,19 @@ def check_dr_limit_end(ctx: Context) -> Finding:
     per_k, ok = {}, True
     gammas = np.array([1e-1, 1e-2, 1e-3, 1e-4])
     for k in ctx.ks:
-        g = gammas[gammas < 0.5 * math.atan(k)]
+        # the limit lives below gamma = arctan k: for small k the columns shrink with it
+        g = gammas * min(1.0, 5.0 * math.atan(k))
+        g = g[g < 0.5 * math.atan(k)]
         d = dr_limit_delta(k, g)
         gap = (g - d) / g
         st = double_rolling_state(g, d, Parameters(1.0))
         slope = float(np.polyfit(np.log(g[-3:]), np.log(g[-3:] - d[-3:]), 1)[0])
         bs = ctx.traced(k)
         end = first_special_point(bs, "dr_limit", "end")
-        row = {"(gamma - delta)/gamma at gamma = 1e-4": float(gap[-1]),
+        row = {f"(gamma - delta)/gamma at gamma = {g[-1]:.3g}": float(gap[-1]),
                "log-log slope of gamma - delta": slope,
-               "beta_L k / (2 gamma^2) at 1e-4": float(st["beta_L"][-1] * k / (2 * g[-1] ** 2)),
+               f"beta_L k / (2 gamma^2) at {g[-1]:.3g}": float(
+                   st["beta_L"][-1] * k / (2 * g[-1] ** 2)),
                "tracer end: delta/gamma": (end[1] / end[0]) if end else math.nan,
                "tracer end: gamma": end[0] if end else math.nan}
         ok &= bool(np.all(np.diff(gap) < 0)) and gap[-1] < 1e-3 and slope > 1.5

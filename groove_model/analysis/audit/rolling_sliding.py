@@ -391,8 +391,10 @@ def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
     low_end = math.nan if first is None else float(d[first])
     unphysical_runs = int(np.count_nonzero(np.diff(physical.astype(int)) != 0))
     # The line leaves the axis linearly in delta, with a slope ~ 1/k^2 for small k: its start is
-    # (arctan k, 0) if the distance shrinks a hundredfold from delta = 1e-8 to 1e-10.
-    near_axis = rs_no_roll_gamma(k, np.array([1e-8, 1e-10]))
+    # (arctan k, 0) if the distance shrinks a hundredfold from delta = d to d/100, with
+    # d = 1e-8, smaller for k < 0.1 (d ~ k^3) to stay in the linear part (delta/k^2 << k).
+    near_deltas = 1e-8 * min(1.0, 1e3 * k ** 3) * np.array([1.0, 1e-2])
+    near_axis = rs_no_roll_gamma(k, near_deltas)
     end_near_corner = float(rs_no_roll_gamma(k, np.array([0.25 * math.pi - 1e-7]))[0])
     bs = ctx.traced(k)
     curve = bs.curves.get("rs_no_roll") if bs is not None else None
@@ -402,11 +404,12 @@ def _rs_no_roll_ends(ctx: Context, k: float) -> dict:
         tr_start, tr_end = (float(xs[0, 0]), float(xs[0, 1])), (float(xs[-1, 0]), float(xs[-1, 1]))
     return dict(g=g, d=d, st=st, physical=physical, crossings=crossings, first=first,
                 low_end=low_end, switches=unphysical_runs, near_axis=near_axis,
+                near_deltas=near_deltas,
                 end_near_corner=end_near_corner, tracer_start=tr_start, tracer_end=tr_end)
 
 
 def _starts_at(gammas: np.ndarray, gamma0: float) -> bool:
-    """Whether ``gamma`` at ``delta = 1e-8, 1e-10`` approaches ``gamma0`` linearly in delta."""
+    """Whether ``gamma`` at ``delta = d, d/100`` approaches ``gamma0`` linearly in delta."""
     far, near = np.abs(gammas - gamma0)
     return bool(near <= 0.02 * far + 1e-13)
 
@@ -421,8 +424,9 @@ def check_rs_no_roll_small_k(ctx: Context) -> Finding:
         e = _rs_no_roll_ends(ctx, k)
         row = {"crossings per row (min, max)": _min_max(e["crossings"]),
                "all physical": bool(np.all(e["physical"])),
-               "gamma at delta = 1e-8": float(e["near_axis"][0]),
-               "gamma at delta = 1e-10": float(e["near_axis"][1]), "arctan k": math.atan(k),
+               f"gamma at delta = {e['near_deltas'][0]:.3g}": float(e["near_axis"][0]),
+               f"gamma at delta = {e['near_deltas'][1]:.3g}": float(e["near_axis"][1]),
+               "arctan k": math.atan(k),
                "gamma at delta = pi/4 - 1e-7": e["end_near_corner"],
                "tracer: |start - (arctan k, 0)|": distance(e["tracer_start"], (math.atan(k), 0.0)),
                "tracer: |end - (pi/4, pi/4)|": distance(e["tracer_end"], CORNER),
