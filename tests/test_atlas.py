@@ -182,3 +182,15 @@ def test_a_fold_unresolved_at_the_range_end_is_found_inside(nu):
     bs = trace_boundaries(Parameters(189.6420639321449, compliance=Compliance(c)))
     assert bs.ok, bs.failures
     assert len(bs.curves["rs_no_roll"].special("fold_gamma")) == 1
+
+
+def test_events_within_rounding_of_the_corner_fail_the_atlas_instead_of_making_thresholds():
+    # at k = 1e6 the fold of rs_no_roll is 4e-13 from the corner; the atlas in nu reported two
+    # thresholds in nu where delta = gamma vanished by rounding, and exit 0 (a wrong result)
+    atlas = trace_atlas_in_poisson(1e6, (0.0, 0.5))
+    assert not atlas.ok
+    assert any("from the singular corner" in f for f in atlas.failures), atlas.failures
+    assert not [t for t in atlas.thresholds if "corner" in t.what]
+    assert not any(name.endswith(("_3", "_4", "_5")) for name in atlas.curves)
+    # one resolved k: no failure, no threshold in nu
+    assert trace_atlas_in_poisson(1e5, (0.0, 0.5)).ok

@@ -114,3 +114,45 @@ def test_py_typed_marker_is_shipped():
 
     assert resources.files("groove_model").joinpath("py.typed").is_file()
     assert resources.files("continuation").joinpath("py.typed").is_file()
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["trace", "-k", "1e-5", "--out", "OUT"], "k = 1e-05 is outside the range the boundaries"),
+    (["trace", "-k", "1e7", "--out", "OUT"], "k = 10000000.0 is outside the range"),
+    (["map", "-k", "2e6", "-o", "OUT/m.png"], "k = 2000000.0 is outside the range"),
+    (["sweep", "--k-min", "5e-5", "--k-max", "1", "-n", "3", "--out", "OUT"],
+     "k = 5e-05 is outside the range"),
+    (["atlas", "--k-max", "1e7", "--out", "OUT"], "1e-4 <= k <= 1e6"),
+    (["audit", "-k", "1e-5", "--out", "OUT"], "1e-4 <= k <= 1e6"),
+    (["compliance", "-k", "1e7", "--out", "OUT"], "1e-4 <= k <= 1e6"),
+    (["trace", "-k", "1", "--compliance", "0.3", "--out", "OUT"],
+     "compliance ratio c = 0.3 is outside the range the boundaries are traced for: 2/3 <= c <= 1"),
+    (["trace", "-k", "1", "--compliance", "20", "--out", "OUT"], "2/3 <= c <= 1"),
+    (["atlas", "--poisson", "-0.5", "--out", "OUT"],
+     "Poisson ratio nu = -0.5 is outside the range the boundaries are traced for: 0 <= nu <= 0.5"),
+    (["compliance", "--poissons", "-0.2", "0.3", "--out", "OUT"], "0 <= nu <= 0.5"),
+])
+def test_traced_commands_refuse_k_and_compliance_outside_the_verified_ranges(
+        argv, message, tmp_path, capsys):
+    argv = [str(tmp_path / "out") if a == "OUT" else a.replace("OUT", str(tmp_path / "out"))
+            for a in argv]
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert message in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_point_solver_takes_any_k_and_poisson_ratio(capsys):
+    # only tracing is limited to the verified ranges; the point solver is exact for any k > 0
+    assert main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1e7",
+                 "--poisson", "-0.5"]) == 0
+
+
+def test_trace_boundaries_refuses_k_outside_the_verified_range():
+    from groove_model.model.parameters import Compliance, Parameters
+    from groove_model.tracing import trace_boundaries
+
+    for bad in (1e-5, 2e6, Parameters(1.0, Compliance(0.5))):
+        with pytest.raises(ValueError, match="outside the range the boundaries are traced for"):
+            trace_boundaries(bad)

@@ -13,8 +13,8 @@ from .common import (
     compliance_from,
     compliance_label,
     computation_errors,
-    friction,
     output_directory,
+    traced_friction,
 )
 
 __all__ = ["add_parser", "run"]
@@ -45,8 +45,10 @@ def add_parser(subparsers):
                     "thresholds where a special point is born, dies or crosses another, each as "
                     "a codimension-2 point to 1e-12.",
         examples=_EXAMPLES)
-    p.add_argument("--k-min", type=friction, default=1e-4, help="smallest k (default 1e-4)")
-    p.add_argument("--k-max", type=friction, default=1e6, help="largest k (default 1e6)")
+    p.add_argument("--k-min", type=traced_friction, default=1e-4,
+                   help="smallest k (default 1e-4; 1e-4 <= k <= 1e6)")
+    p.add_argument("--k-max", type=traced_friction, default=1e6,
+                   help="largest k (default 1e6; 1e-4 <= k <= 1e6)")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--no-figure", action="store_true", help="write the CSVs and report only")
     p.add_argument("--svg", action="store_true", help="also write the figure as SVG")

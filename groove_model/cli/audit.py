@@ -44,7 +44,8 @@ def add_parser(subparsers):
                     "counterexample (k, gamma, delta, values).",
         examples=_EXAMPLES)
     add_friction(p, required=False,
-                 help="friction coefficients (> 0), e.g. -k 1 10 or -k 1 -k 10 (default "
+                 help="friction coefficients (1e-4 <= k <= 1e6), e.g. -k 1 10 or -k 1 -k 10 "
+                      "(default "
                       + " ".join(f"{k:g}" for k in DEFAULT_KS) + ")")
     p.add_argument("--out", metavar="DIR",
                    help="write claims.md and claims.json into DIR (created if needed)")

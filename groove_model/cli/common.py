@@ -44,6 +44,8 @@ __all__ = [
     "output_directory",
     "poisson",
     "real",
+    "traced_friction",
+    "traced_poisson",
 ]
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
@@ -95,14 +97,30 @@ def friction(text: str) -> float:
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
-def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "") -> None:
+def traced_friction(text: str) -> float:
+    """Argument type of a ``k`` whose boundaries are traced: ``1e-4 <= k <= 1e6``."""
+    value = friction(text)
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_traced_friction
+
+    try:
+        return check_traced_friction(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "",
+                 traced: bool = True) -> None:
     """``-k K [K ...]``, repeatable: every command reads ``-k 1 10`` and ``-k 1 -k 10`` alike.
 
-    The values go to ``args.ks`` (a list, in the order given; None when not given).
+    The values go to ``args.ks`` (a list, in the order given; None when not given). ``traced``:
+    the command traces boundaries, so ``1e-4 <= k <= 1e6`` (else any ``k > 0``).
     """
-    parser.add_argument("-k", action="extend", nargs="+", type=friction, dest="ks",
+    parser.add_argument("-k", action="extend", nargs="+",
+                        type=traced_friction if traced else friction, dest="ks",
                         metavar="K", required=required,
-                        help=help or "friction coefficients (> 0): -k 1 10 or -k 1 -k 10")
+                        help=help or "friction coefficients (1e-4 <= k <= 1e6): -k 1 10 or "
+                                     "-k 1 -k 10")
 
 
 def one_friction(args, command: str) -> float:
@@ -202,24 +220,53 @@ def _ratio(text: str) -> float:
         ) from None
 
 
-def add_compliance_options(parser, poisson_help: str = "") -> None:
+def _traced_ratio(text: str) -> float:
+    """Argument type of the compliance ratio of a traced command: ``2/3 <= c <= 1``."""
+    value = _ratio(text)
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_traced_ratio
+
+    try:
+        return check_traced_ratio(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def traced_poisson(text: str) -> float:
+    """Argument type of the Poisson ratio of a traced command: ``0 <= nu <= 1/2``."""
+    value = poisson(text)
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_traced_poisson
+
+    try:
+        return check_traced_poisson(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def add_compliance_options(parser, poisson_help: str = "", traced: bool = True) -> None:
     """Add ``--compliance RATIO`` and ``--poisson NU`` to a command (one line per command).
 
     ``--poisson NU`` sets Mindlin's ratio ``2 (1 - nu)/(2 - nu)``
     (:meth:`~groove_model.model.parameters.Compliance.from_poisson`); ``--compliance RATIO``
     sets the ratio itself and, when both are given, wins (a command may use ``nu`` for more,
     e.g. ``groove solve`` for the Hertz contact in SI units). Neither: the paper's ratio 1.
-    Read them back with :func:`compliance_from`.
+    Read them back with :func:`compliance_from`. ``traced``: the command traces boundaries, so
+    ``2/3 <= RATIO <= 1`` and ``0 <= NU <= 0.5`` (else any ratio > 0 and ``-1 < NU <= 0.5``).
     """
     group = parser.add_argument_group(
         "contact compliance (default: the paper's T/N = u_t/u_n)")
-    group.add_argument("--compliance", type=_ratio, default=None, metavar="RATIO",
+    group.add_argument("--compliance", type=_traced_ratio if traced else _ratio, default=None,
+                       metavar="RATIO",
                        help="compliance ratio (T/N) / (u_t/u_n) under proportional loading, "
-                            "> 0 (overrides the ratio from --poisson)")
-    group.add_argument("--poisson", type=poisson, default=None, metavar="NU",
-                       help="Poisson ratio of the ball, -1 < NU <= 0.5: Mindlin's ratio "
-                            "2 (1 - NU)/(2 - NU) (1 at NU = 0, 2/3 at NU = 0.5)"
-                            + (f"; {poisson_help}" if poisson_help else ""))
+                            + ("2/3 <= RATIO <= 1" if traced else "> 0")
+                            + " (overrides the ratio from --poisson)")
+    group.add_argument("--poisson", type=traced_poisson if traced else poisson, default=None,
+                       metavar="NU",
+                       help="Poisson ratio of the ball, "
+                            + ("0 <= NU <= 0.5" if traced else "-1 < NU <= 0.5")
+                            + ": Mindlin's ratio 2 (1 - NU)/(2 - NU) (1 at NU = 0, 2/3 at "
+                              "NU = 0.5)" + (f"; {poisson_help}" if poisson_help else ""))
 
 
 def compliance_from(args) -> Compliance:

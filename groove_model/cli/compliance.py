@@ -10,9 +10,9 @@ from .common import (
     EXIT_OK,
     add_command,
     computation_errors,
-    friction,
     output_directory,
-    poisson,
+    traced_friction,
+    traced_poisson,
 )
 
 __all__ = ["add_parser", "run"]
@@ -37,10 +37,10 @@ def add_parser(subparsers):
                     "[0, 0.5] at fixed k; report which thresholds and special points move, "
                     "by how much, and whether the topology changes.",
         examples=_EXAMPLES)
-    p.add_argument("--poissons", type=poisson, nargs="+", default=[0.0, 0.3, 0.5],
+    p.add_argument("--poissons", type=traced_poisson, nargs="+", default=[0.0, 0.3, 0.5],
                    metavar="NU", help="Poisson ratios, the first the reference (default 0 0.3 "
                                       "0.5)")
-    p.add_argument("-k", type=friction, action="extend", nargs="+", dest="ks", metavar="K",
+    p.add_argument("-k", type=traced_friction, action="extend", nargs="+", dest="ks", metavar="K",
                    help="friction coefficients of the atlases in nu (default 1 10)")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--no-figure", action="store_true", help="write the CSVs and report only")

@@ -50,7 +50,7 @@ def add_parser(subparsers):
     p.add_argument("--delta", required=True,
                    type=real("delta", "0 <= delta <= gamma"),
                    help="half-difference of the wall angles, 0 <= delta <= gamma")
-    add_friction(p, help="friction coefficient (> 0)")
+    add_friction(p, help="friction coefficient (> 0)", traced=False)
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")
@@ -59,7 +59,7 @@ def add_parser(subparsers):
     dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
     dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
     dim.add_argument("--g", type=real("g"), default=9.81, help="gravity in m/s^2 (default 9.81)")
-    add_compliance_options(p, poisson_help="also the nu of the SI results")
+    add_compliance_options(p, poisson_help="also the nu of the SI results", traced=False)
     p.set_defaults(run=run)
     return p
 

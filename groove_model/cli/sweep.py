@@ -17,8 +17,8 @@ from .common import (
     add_compliance_options,
     compliance_from,
     compliance_label,
-    friction,
     output_directory,
+    traced_friction,
 )
 
 __all__ = ["Progress", "add_parser", "run", "sweep_values"]
@@ -66,8 +66,10 @@ def add_parser(subparsers):
                     "rows into one CSV in long format (a k column) plus one table of the "
                     "special points of every k.",
         examples=_EXAMPLES)
-    p.add_argument("--k-min", required=True, type=friction, help="smallest k (> 0)")
-    p.add_argument("--k-max", required=True, type=friction, help="largest k (>= --k-min)")
+    p.add_argument("--k-min", required=True, type=traced_friction,
+                   help="smallest k (1e-4 <= k <= 1e6)")
+    p.add_argument("--k-max", required=True, type=traced_friction,
+                   help="largest k (>= --k-min, <= 1e6)")
     p.add_argument("-n", required=True, type=_count, help="number of k values (>= 1)")
     p.add_argument("--jobs", type=_jobs, default=1,
                    help="worker processes (default 1: in this process)")

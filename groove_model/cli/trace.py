@@ -53,7 +53,7 @@ def add_parser(subparsers):
                     "names, by pseudo-arclength continuation, and write them as CSV and as an "
                     "overlay figure in the style of the paper's Figure 2.",
         examples=_EXAMPLES)
-    add_friction(p, help="friction coefficients (> 0): -k 1 10 or -k 1 -k 10")
+    add_friction(p)
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--figure", default=None,
                    help="overlay file name without suffix (default from the k, see below)")

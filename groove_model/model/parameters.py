@@ -15,11 +15,18 @@ import numpy as np
 
 __all__ = [
     "POISSON_RANGE",
+    "TRACED_COMPLIANCE_RANGE",
+    "TRACED_K_RANGE",
+    "TRACED_POISSON_RANGE",
     "Compliance",
     "Parameters",
     "check_domain",
     "check_friction",
     "check_poisson",
+    "check_traced",
+    "check_traced_friction",
+    "check_traced_poisson",
+    "check_traced_ratio",
     "gamma_delta_from_thetas",
     "k_text",
     "thetas_from_gamma_delta",
@@ -74,6 +81,56 @@ def check_poisson(nu: object) -> float:
         raise ValueError(f"Poisson ratio nu = {value!r} is outside the allowed range "
                          f"{low:g} < nu <= {high:g} (an isotropic elastic solid)")
     return value
+
+
+#: The friction coefficients, compliance ratios and Poisson ratios the tracer is verified for:
+#: sweeps there check every curve against independent solves. The point solver is exact for
+#: any k > 0 and any ratio > 0; outside these ranges a boundary may have another topology.
+TRACED_K_RANGE = (1e-4, 1e6)
+TRACED_POISSON_RANGE = (0.0, 0.5)
+#: Mindlin's ratio 2 (1 - nu)/(2 - nu) over TRACED_POISSON_RANGE
+TRACED_COMPLIANCE_RANGE = (2.0 / 3.0, 1.0)
+#: relative slack at the ends of the traced ranges (a ratio computed from nu = 1/2 may round)
+_RANGE_SLACK = 1e-12
+
+
+def check_traced_friction(k: float) -> float:
+    """``k`` if inside :data:`TRACED_K_RANGE`, else ``ValueError`` naming it and the range."""
+    k_lo, k_hi = TRACED_K_RANGE
+    if not k_lo * (1.0 - _RANGE_SLACK) <= k <= k_hi * (1.0 + _RANGE_SLACK):
+        raise ValueError(f"friction coefficient k = {k!r} is outside the range the boundaries "
+                         "are traced for: 1e-4 <= k <= 1e6 (the point solver, groove solve, "
+                         "takes any k > 0)")
+    return k
+
+
+def check_traced_ratio(c: float) -> float:
+    """``c`` if inside :data:`TRACED_COMPLIANCE_RANGE`, else ``ValueError``."""
+    c_lo, c_hi = TRACED_COMPLIANCE_RANGE
+    if not c_lo * (1.0 - _RANGE_SLACK) <= c <= c_hi * (1.0 + _RANGE_SLACK):
+        raise ValueError(f"compliance ratio c = {c!r} is outside the range the boundaries are "
+                         "traced for: 2/3 <= c <= 1 (Mindlin's ratio for Poisson ratios "
+                         "0 <= nu <= 1/2)")
+    return c
+
+
+def check_traced_poisson(nu: float) -> float:
+    """``nu`` if inside :data:`TRACED_POISSON_RANGE`, else ``ValueError``."""
+    nu = check_poisson(nu)
+    if not TRACED_POISSON_RANGE[0] <= nu <= TRACED_POISSON_RANGE[1]:
+        raise ValueError(f"Poisson ratio nu = {nu!r} is outside the range the boundaries are "
+                         "traced for: 0 <= nu <= 0.5")
+    return nu
+
+
+def check_traced(params: Parameters) -> None:
+    """Raise ``ValueError`` if ``k`` or the compliance ratio is outside the traced ranges.
+
+    The message names the quantity, its value and the range (:data:`TRACED_K_RANGE`,
+    :data:`TRACED_COMPLIANCE_RANGE`).
+    """
+    check_traced_friction(params.k)
+    check_traced_ratio(params.c)
 
 
 def k_text(k: float) -> str:

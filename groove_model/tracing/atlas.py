@@ -90,6 +90,11 @@ SAME_POINT = 1e-7
 #: codimension-2 points this close in p (relative to 1 + |p|) and in the chart are one threshold
 COINCIDENT = 1e-9
 
+#: a threshold this close to the singular corner (pi/4, pi/4) (max-norm in gamma and delta) is
+#: not resolved: the fold of rs_no_roll lies ~0.37/k^2 from it (4e-13 at k = 1e6), below the
+#: tracer's tolerance, and its events there (delta = gamma) are rounding; the atlas fails
+CORNER_RESOLUTION = 1e-10
+
 ATLAS_COLUMNS = ("curve", "k", "nu", "compliance", "gamma", "delta", "beta_L", "upsilon",
                  "physical", "threshold")
 
@@ -454,7 +459,7 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
     followed: list[tuple[_Start, Codim2Curve]] = []
     starts: dict[str, _Start] = {}
     failures = []
-    seeds = [(p_hi, (-1,)), (p_lo, (1,))]
+    seeds: list[tuple[float, tuple[int, ...]]] = [(p_hi, (-1,)), (p_lo, (1,))]
     inner = _inner_seed(axis, p_lo, p_hi)
     if inner is not None:
         seeds.append((inner, (-1, 1)))
@@ -462,8 +467,9 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
         for start in _starts(families, p):
             if _covered(start, followed):
                 continue
-            if start.name in starts:
-                start.name = f"{start.name}_{len(starts) + 1}"
+            if start.name in starts:  # a second curve of the same kind: _2, _3, ...
+                start.name = next(f"{start.name}_{n}" for n in range(2, len(starts) + 3)
+                                  if f"{start.name}_{n}" not in starts)
             starts[start.name] = start
             for direction in directions:
                 trace = _follow(start, direction, (p_lo, p_hi), options)
@@ -479,9 +485,20 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
     thresholds = [t for start, trace in followed
                   for t in _thresholds(start, trace, len(_events(start)))]
     thresholds.sort(key=lambda t: t.value)
+    unresolved = [t for t in thresholds if _corner_distance(t.x) <= CORNER_RESOLUTION]
+    for t in unresolved:
+        failures.append(f"{t.name} at {axis.name} = {t.value:.12g} is {_corner_distance(t.x):.1e} "
+                        "from the singular corner (pi/4, pi/4), closer than events are resolved "
+                        f"there ({CORNER_RESOLUTION:g}): no threshold can be trusted")
+    thresholds = [t for t in thresholds if t not in unresolved]
     return Atlas(axis=axis, range=(float(value_range[0]), float(value_range[1])), curves=curves,
                  thresholds=tuple(thresholds), failures=tuple(failures),
                  seconds=time.perf_counter() - began)
+
+
+def _corner_distance(x: np.ndarray) -> float:
+    """Max-norm distance of ``(gamma, delta)`` from the corner ``(pi/4, pi/4)``."""
+    return float(max(abs(x[0] - 0.25 * math.pi), abs(x[1] - 0.25 * math.pi)))
 
 
 def _inner_seed(axis: Axis, p_lo: float, p_hi: float) -> float | None:
@@ -501,7 +518,7 @@ def _inner_seed(axis: Axis, p_lo: float, p_hi: float) -> float | None:
 
 def _curve(start: _Start, traces: list[Codim2Curve]) -> AtlasCurve:
     """The rows of one curve, in increasing ``p`` from its lower end."""
-    rows = []
+    rows: list[np.ndarray] = []
     # increasing p: a start inside the range is followed both ways (down, then up from it)
     for trace in traces:
         z = trace.z[::-1] if len(trace) > 1 and trace.z[-1, -1] < trace.z[0, -1] else trace.z

@@ -58,7 +58,7 @@ from ..model.boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from ..model.parameters import Parameters
+from ..model.parameters import Parameters, check_traced
 from .assembly import (
     Role,
     Tagged,
@@ -298,7 +298,9 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     Parameters
     ----------
     k : float or Parameters
-        Friction coefficient, finite and > 0.
+        Friction coefficient, ``1e-4 <= k <= 1e6``, with a compliance ratio ``2/3 <= c <= 1``
+        (Mindlin's for Poisson ratios ``0 <= nu <= 1/2``): the ranges the tracer is verified
+        for (:data:`~groove_model.model.parameters.TRACED_K_RANGE`).
     keep_unphysical : bool
         Keep the parts of each boundary where its regime is not valid (flagged).
     options : continuation.Options, optional
@@ -325,6 +327,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
 
     Raises
     ------
+    ValueError
+        If ``k`` or the compliance ratio is outside the traced ranges (the message names it).
     ImportError
         With ``certify=True`` if python-flint is not installed (before anything is traced).
 
@@ -334,6 +338,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
     params = Parameters.coerce(k)
+    check_traced(params)
     if certify:
         require_flint()
     options = options or DEFAULT_OPTIONS
