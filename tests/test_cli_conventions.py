@@ -156,3 +156,23 @@ def test_trace_boundaries_refuses_k_outside_the_verified_range():
     for bad in (1e-5, 2e6, Parameters(1.0, Compliance(0.5))):
         with pytest.raises(ValueError, match="outside the range the boundaries are traced for"):
             trace_boundaries(bad)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["trace", "-k", "1", "--out", "DIR/o", "--figure", "sub/name"], "is not a file name"),
+    (["trace", "-k", "1", "--out", "DIR/o", "--figure", "../escape"], "is not a file name"),
+    (["trace", "-k", "1", "--out", "DIR/f/sub"], "DIR/f is a file, not a directory"),
+    (["reproduce", "--out", "DIR/f"], "--out DIR/f exists and is not a directory"),
+    (["map", "-k", "1", "-o", "DIR/f/m.png"], "DIR/f of DIR/f/m.png is a file, not a directory"),
+    (["sweep", "--k-min", "1", "--k-max", "10", "-n", "1", "--out", "DIR/o"],
+     "-n 1 traces one k"),
+])
+def test_bad_output_paths_are_refused_before_anything_is_computed(argv, message, tmp_path,
+                                                                  capsys):
+    (tmp_path / "f").write_text("a file")
+    argv = [a.replace("DIR", str(tmp_path)) for a in argv]
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert message.replace("DIR", str(tmp_path)) in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]

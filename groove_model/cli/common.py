@@ -169,7 +169,18 @@ def output_directory(text: str) -> Path:
     out = Path(text)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
+    blocking = _file_ancestor(out)
+    if blocking is not None:
+        raise UsageError(f"--out {out} cannot be created: {blocking} is a file, not a directory")
     return out
+
+
+def _file_ancestor(path: Path) -> Path | None:
+    """The first existing ancestor of ``path`` that is not a directory, or ``None``."""
+    for parent in path.parents:
+        if parent.exists():
+            return None if parent.is_dir() else parent
+    return None
 
 
 def figure_target(text: str) -> tuple[Path, str]:
@@ -185,6 +196,8 @@ def figure_target(text: str) -> tuple[Path, str]:
     if fmt not in FIGURE_FORMATS:
         raise UsageError(f"output format {target.suffix or '(none)'!r} of {target} is not one "
                          "of .png, .svg, .pdf")
+    if target.parent.exists() and not target.parent.is_dir():
+        raise UsageError(f"{target.parent} of {target} is a file, not a directory")
     if not target.parent.is_dir():
         raise UsageError(f"directory {target.parent} of {target} does not exist")
     return target, fmt

@@ -6,7 +6,7 @@ import functools
 import logging
 from pathlib import Path
 
-from .common import EXIT_OK, add_command
+from .common import EXIT_OK, add_command, output_directory
 
 __all__ = ["add_parser", "run"]
 
@@ -52,7 +52,7 @@ def steps(out: Path) -> tuple:
 
 def run(args, groove_parser) -> int:
     """Run each step; stop at the first that does not return 0 and return its exit code."""
-    out = Path(args.out)
+    out = output_directory(args.out)
     out.mkdir(parents=True, exist_ok=True)
     for argv in steps(out):
         log.info("groove %s", " ".join(argv))

@@ -161,6 +161,9 @@ def run(args) -> int:
 
     if not args.k_min <= args.k_max:
         raise UsageError(f"--k-min = {args.k_min!r} must be <= --k-max = {args.k_max!r}")
+    if args.n == 1 and args.k_min != args.k_max:
+        raise UsageError(f"-n 1 traces one k, but --k-min = {args.k_min!r} and --k-max = "
+                         f"{args.k_max!r} differ: give -n >= 2, or the same k twice")
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     if args.certify:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import sys
+from pathlib import Path
 
 from .common import (
     EXIT_FAILED,
@@ -56,7 +57,8 @@ def add_parser(subparsers):
     add_friction(p)
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--figure", default=None,
-                   help="overlay file name without suffix (default from the k, see below)")
+                   help="overlay file name inside --out, without suffix or directory "
+                        "(default from the k, see below)")
     p.add_argument("--keep-unphysical", action="store_true",
                    help="keep the parts of each boundary where its regime is not valid")
     p.add_argument("--deg", action="store_true", help="overlay axes in degrees")
@@ -98,6 +100,10 @@ def run(args) -> int:
     from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
+    if args.figure is not None and (args.figure in ("", ".", "..")
+                                    or Path(args.figure).name != args.figure):
+        raise UsageError(f"--figure {args.figure!r} is not a file name: give a name without "
+                         "directories (the overlay is written inside --out)")
     if args.certify:
         # Imported here: only --certify needs to know whether python-flint is installed.
         from continuation.numbers import require_flint
