@@ -194,3 +194,13 @@ def test_events_within_rounding_of_the_corner_fail_the_atlas_instead_of_making_t
     assert not any(name.endswith(("_3", "_4", "_5")) for name in atlas.curves)
     # one resolved k: no failure, no threshold in nu
     assert trace_atlas_in_poisson(1e5, (0.0, 0.5)).ok
+
+
+def test_no_atlas_point_leaves_the_domain_by_rounding(atlas):
+    # the junction's first row (born on delta = 0 at k_branch) was written as delta = -7.7e-14
+    for curve in atlas.curves.values():
+        assert np.all(curve.x[:, 1] >= 0.0) and np.all(curve.x[:, 1] <= curve.x[:, 0]), curve.name
+        _, dense = curve.dense(6)
+        assert np.all(dense[:, 1] >= 0.0), curve.name
+    for t in atlas.thresholds:
+        assert 0.0 <= t.x[1] <= t.x[0], t.name

@@ -276,3 +276,21 @@ def test_plot_refuses_points_outside_the_domain(column, value, message, written,
     path = tmp_path / "bad.csv"
     frame.to_csv(path, index=False)
     assert message.replace("'", "") in _plot_refused([path], tmp_path, capsys).replace("'", "")
+
+
+def test_the_compliance_travels_with_the_csv_and_tells_two_traces_apart(tmp_path, capsys):
+    # a trace for nu = 0.5 wrote no compliance column, so `groove plot` refused it next to the
+    # paper's trace of the same k ("both hold k = 1") and titled it "k = 1"
+    assert main(["trace", "-k", "1", "--out", str(tmp_path), "--no-figure"]) == 0
+    assert main(["trace", "-k", "1", "--poisson", "0.5", "--out", str(tmp_path),
+                 "--no-figure"]) == 0
+    mindlin = read_boundaries_csv(tmp_path / "boundaries_k1_nu0.5.csv")
+    assert mindlin["compliance"].unique().tolist() == [pytest.approx(2.0 / 3.0, rel=1e-15)]
+    specials = pd.read_csv(tmp_path / "special_points_k1_nu0.5.csv")
+    assert specials["compliance"].unique().tolist() == [pytest.approx(2.0 / 3.0, rel=1e-15)]
+    assert main(["plot", str(tmp_path / "boundaries_k1.csv"),
+                 str(tmp_path / "boundaries_k1_nu0.5.csv"), "-o", str(tmp_path / "both.png")]) == 0
+    # a file written before the column existed reads as the paper's compliance
+    old = pd.read_csv(tmp_path / "boundaries_k1.csv").drop(columns="compliance")
+    old.to_csv(tmp_path / "old.csv", index=False)
+    assert read_boundaries_csv(tmp_path / "old.csv")["compliance"].eq(1.0).all()

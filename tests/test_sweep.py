@@ -25,6 +25,7 @@ from groove_model.cli.sweep import Progress, sweep_values
 from groove_model.io.sweep import SWEEP_FILES, write_sweep
 from groove_model.tracing import (
     CSV_COLUMNS,
+    SPECIAL_POINT_COLUMNS,
     SweepError,
     SweepResult,
     sweep_results,
@@ -112,8 +113,7 @@ def test_jobs_and_executor_together_are_rejected():
 
 def _failed(k):
     empty = pd.DataFrame(columns=list(CSV_COLUMNS))
-    specials = pd.DataFrame(columns=["boundary", "k", "kind", "gamma", "delta", "beta_L",
-                                     "upsilon", "note"])
+    specials = pd.DataFrame(columns=[*SPECIAL_POINT_COLUMNS, "note"])
     return SweepResult(k, False, ("rs_no_roll: it stops short",), (), empty, specials)
 
 

@@ -38,7 +38,7 @@ def run(args) -> int:
     from ..plots.overlay import save_overlay
 
     frames = []
-    sources: dict[float, str] = {}
+    sources: dict[tuple[float, float], str] = {}
     for name in args.files:
         try:
             frame = read_boundaries_csv(name)
@@ -46,10 +46,11 @@ def run(args) -> int:
             raise UsageError(f"cannot read {name}: {exc.strerror or exc}") from None
         except ValueError as exc:
             raise UsageError(str(exc)) from None
-        k = float(frame["k"].iloc[0])
-        if k in sources:
-            raise UsageError(f"{name} and {sources[k]} both hold k = {k_text(k)}: give each k once")
-        sources[k] = name
+        key = float(frame["k"].iloc[0]), float(frame["compliance"].iloc[0])
+        if key in sources:
+            raise UsageError(f"{name} and {sources[key]} both hold k = {k_text(key[0])} with "
+                             f"compliance ratio {key[1]:g}: give each once")
+        sources[key] = name
         frames.append(frame)
     target, fmt = figure_target(args.output)
     for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):

@@ -74,6 +74,8 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         raise ValueError(f"{path}: not a boundaries CSV ({exc})") from None
     if "certified" not in frame.columns:
         frame["certified"] = ""  # written before certification existed: not certified
+    if "compliance" not in frame.columns:
+        frame["compliance"] = 1.0  # written before the column existed: the paper's law
     missing = [c for c in CSV_COLUMNS if c not in frame.columns]
     if missing:
         raise ValueError(f"{path}: not a boundaries CSV; missing columns {', '.join(missing)} "
@@ -95,13 +97,18 @@ def read_boundaries_csv(path) -> pd.DataFrame:
             raise ValueError(f"{path}: column {column} = {frame[column].iloc[row]!r} in data row "
                              f"{row + 1} is not a {'finite ' if finite_required else ''}number")
         frame[column] = values.astype(float)
-    if not np.all(frame["k"] > 0):
-        raise ValueError(f"{path}: column k must be > 0")
-    ks = list(dict.fromkeys(frame["k"]))
-    if len(ks) > 1:
-        raise ValueError(f"{path}: column k holds {len(ks)} values ("
-                         f"{', '.join(map(k_text, ks[:3]))}{', ...' if len(ks) > 3 else ''}); "
-                         "a boundaries CSV holds one k, as groove trace writes it")
+    for column, name in (("k", "friction coefficient k"), ("compliance", "compliance ratio")):
+        bad = ~(frame[column] > 0)
+        if bad.any():
+            row = int(np.flatnonzero(bad.to_numpy())[0])
+            raise ValueError(f"{path}: column {column} = {float(frame[column].iloc[row])!r} in "
+                             f"data row {row + 1} is outside the allowed range: {name} > 0")
+        values = list(dict.fromkeys(frame[column]))
+        if len(values) > 1:
+            raise ValueError(
+                f"{path}: column {column} holds {len(values)} values ("
+                f"{', '.join(map(k_text, values[:3]))}{', ...' if len(values) > 3 else ''}); "
+                f"a boundaries CSV holds one {column}, as groove trace writes it")
     _check_domain_rows(path, frame)
     frame["point"] = frame["point"].fillna("")
     physical = frame["physical"].astype(str).str.lower()

@@ -74,18 +74,22 @@ def region_label_positions(params_list, top: float = _HALF_PI, codes_list=None,
     room_any = [np.maximum.reduce([_room(codes == code) for code in np.unique(codes)])
                 for codes in codes_list]
     positions = {}
+    free = below_top
     for name in REGION_NAMES:
         masks = [codes == CATEGORY_CODE[name] for codes in codes_list]
-        candidates = [(None, _room(np.logical_and.reduce(masks) & below_top))]
+        candidates = [(None, _room(np.logical_and.reduce(masks) & free))]
         if len(codes_list) > 1:
             for m in sorted(range(len(codes_list)), key=lambda m: -params_list[m].k):
                 others = [r for o, r in enumerate(room_any) if o != m]
                 candidates.append((params_list[m].k,
-                                   np.minimum.reduce([_room(masks[m] & below_top), *others])))
+                                   np.minimum.reduce([_room(masks[m] & free), *others])))
         for k, room in candidates:
             j, i = np.unravel_index(int(np.argmax(room)), room.shape)
             if room[j, i] >= 1.0:
                 positions[name] = (float(centres[i]), float(centres[j]), k)
+                # the next labels keep clear of this one (two half-sizes between centres)
+                free = free & ~((np.abs(centres[None, :] - centres[i]) < 2.0 * _HALF_SIZE[0])
+                                & (np.abs(centres[:, None] - centres[j]) < 2.0 * _HALF_SIZE[1]))
                 break
     return positions
 

@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..io.export import atomic_write
-from ..model.parameters import Parameters, k_text
+from ..model.parameters import Compliance, Parameters, k_text
 from ..tracing import BoundarySet
 from .labels import label_regions, region_label_positions
 
@@ -51,6 +51,18 @@ _HALF_PI = 0.5 * math.pi
 
 def _frame(item):
     return item.to_frame() if isinstance(item, BoundarySet) else item
+
+
+def _key(frame) -> tuple[float, float]:
+    """``(k, c)`` of a frame: what tells two traces apart (a file without the compliance
+    column has the paper's ``c = 1``)."""
+    c = float(frame["compliance"].iloc[0]) if "compliance" in frame.columns else 1.0
+    return float(frame["k"].iloc[0]), c
+
+
+def _key_text(key: tuple[float, float], with_c: bool) -> str:
+    k, c = key
+    return f"k = {k_text(k)}" + (f", c = {c:.4g}" if with_c else "")
 
 
 def _drawn_rows(frame, name: str, physical_only: bool):
@@ -91,7 +103,7 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
     list of matplotlib artists
     """
     frames = [_frame(b) for b in boundary_sets]
-    ks = sorted({float(f["k"].iloc[0]) for f in frames if len(f)})
+    ks = sorted({_key(f) for f in frames if len(f)})
     scale = (180.0 / math.pi) if degrees else 1.0
     unit = "deg" if degrees else "rad"
     top = _HALF_PI * scale
@@ -110,13 +122,13 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
 
 def _draw_frame(ax, frame, ks: list, scale: float, special_points: bool,
                 physical_only: bool) -> list:
-    """The curves of one ``k``, its weight and colour from its rank among ``ks``."""
-    k = float(frame["k"].iloc[0])
-    rank = ks.index(k)
+    """The curves of one ``(k, c)``, its weight and colour from its rank among ``ks``."""
+    key = _key(frame)
+    rank = ks.index(key)
     width = 0.9 + 1.6 * rank / max(1, len(ks) - 1) if len(ks) > 1 else 1.5
     colour = _COLOURS[rank % len(_COLOURS)]
     artists: list = []
-    label: str | None = f"k = {k_text(k)}"
+    label: str | None = _key_text(key, any(c != 1.0 for _, c in ks))
     for name, style in LINESTYLES.items():
         rows = _drawn_rows(frame, name, physical_only)
         if not len(rows):
@@ -171,13 +183,17 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     ax = fig.subplots()
     draw_boundaries(ax, boundary_sets, degrees=degrees)
     params = [b.params or Parameters(b.k) if isinstance(b, BoundarySet)
-              else Parameters(float(b["k"].iloc[0])) for b in boundary_sets if len(_frame(b))]
-    ks = sorted({p.k for p in params})
+              else Parameters(_key(b)[0], Compliance(_key(b)[1]))
+              for b in boundary_sets if len(_frame(b))]
+    keys = sorted({(p.k, p.c) for p in params})
     if regions:
         scale = (180.0 / math.pi) if degrees else 1.0
         label_regions(ax, region_label_positions(params, top=delta_top(frames)), scale)
-    ax.set_title("Regime boundaries of a ball in a groove, friction coefficient k = "
-                 + ", ".join(map(k_text, ks)), fontsize=10)
+    if all(c == 1.0 for _, c in keys):
+        title = "friction coefficient k = " + ", ".join(k_text(k) for k, _ in keys)
+    else:
+        title = "; ".join(_key_text(key, True) for key in keys) + " (c: compliance ratio)"
+    ax.set_title("Regime boundaries of a ball in a groove, " + title, fontsize=10)
     written = []
     for fmt in formats:
         target = stem.parent / f"{stem.name}.{fmt}"

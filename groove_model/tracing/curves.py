@@ -36,11 +36,13 @@ __all__ = [
 ]
 
 
-CSV_COLUMNS = ("boundary", "k", "s", "gamma", "delta", "theta_L", "theta_R", "beta_L", "beta_R",
-               "upsilon", "T_over_N_L", "T_over_N_R", "d_L", "physical", "point", "certified")
+CSV_COLUMNS = ("boundary", "k", "compliance", "s", "gamma", "delta", "theta_L", "theta_R",
+               "beta_L", "beta_R", "upsilon", "T_over_N_L", "T_over_N_R", "d_L", "physical",
+               "point", "certified")
 
 
-SPECIAL_POINT_COLUMNS = ("boundary", "k", "kind", "gamma", "delta", "beta_L", "upsilon")
+SPECIAL_POINT_COLUMNS = ("boundary", "k", "compliance", "kind", "gamma", "delta", "beta_L",
+                         "upsilon")
 
 
 class PointKind(str, enum.Enum):
@@ -183,7 +185,9 @@ class BoundaryCurve:
         return tuple(p for p in self.special_points if p.kind is kind)
 
     def to_frame(self, params: Parameters | None = None) -> pd.DataFrame:
-        """The CSV table of this boundary (columns :data:`CSV_COLUMNS`)."""
+        """The CSV table of this boundary (columns :data:`CSV_COLUMNS`); ``params``: those of
+        the trace (default ``k`` with the paper's compliance; :meth:`BoundarySet.to_frame`
+        passes its own)."""
         import pandas as pd  # only the tables need it, not the tracer
 
         return pd.DataFrame(self._columns(params or Parameters(self.k)),
@@ -197,7 +201,8 @@ class BoundaryCurve:
         for p in sorted(self.special_points, key=lambda p: -POINT_ORDER[p.kind]):
             point[p.index] = p.kind.value
         return {"boundary": np.full(m, self.name, dtype=object),
-                "k": np.full(m, self.k, dtype=float), "s": self.s, **q,
+                "k": np.full(m, self.k, dtype=float),
+                "compliance": np.full(m, params.c, dtype=float), "s": self.s, **q,
                 "physical": self.physical, "point": point,
                 "certified": np.full(m, self.certified, dtype=object)}
 
@@ -250,8 +255,9 @@ class BoundarySet:
     def special_points_frame(self) -> pd.DataFrame:
         """All special points (columns :data:`SPECIAL_POINT_COLUMNS`, plus ``note``)."""
         import pandas as pd  # only the tables need it, not the tracer
-        rows = [dict(boundary=p.boundary, k=self.k, kind=p.kind.value, gamma=p.x[0],
-                     delta=p.x[1], beta_L=p.x[2], upsilon=p.x[3], note=p.note)
+        ratio = (self.params or Parameters(self.k)).c
+        rows = [dict(boundary=p.boundary, k=self.k, compliance=ratio, kind=p.kind.value,
+                     gamma=p.x[0], delta=p.x[1], beta_L=p.x[2], upsilon=p.x[3], note=p.note)
                 for c in self.curves.values() for p in c.special_points]
         return pd.DataFrame(rows, columns=[*SPECIAL_POINT_COLUMNS, "note"])
 

@@ -50,6 +50,9 @@ GAMMA_MIN = 1e-2
 _UP = np.array([0.0, 1.0, 0.0, 0.0])
 _CACHE_SIZE = 64
 
+#: how far outside the domain (radians in delta) a point may be computed by rounding alone
+DOMAIN_ROUNDING = 1e-12
+
 
 @dataclass(frozen=True)
 class Axis:
@@ -146,12 +149,21 @@ class BoundaryFamily:
         return self.system(p).jacobian(y)
 
     def to_x(self, z: np.ndarray) -> np.ndarray:
-        """``z = (y, p)`` (one point or rows) to ``x = (gamma, delta, beta_L, upsilon)``."""
+        """``z = (y, p)`` (one point or rows) to ``x = (gamma, delta, beta_L, upsilon)``.
+
+        A ``delta`` outside ``[0, gamma]`` by at most ``DOMAIN_ROUNDING`` (a point on the edge
+        ``delta = 0``, e.g. a threshold where the junction is born, computed as ``-8e-14``) is
+        put on the edge, so that no row leaves the domain by rounding.
+        """
         z = np.atleast_2d(z)
         g = np.array([self.scale(p) for p in z[:, -1]])
         x = z[:, :4].copy()
         x[:, :2] *= g[:, None]
         x[:, 2] = x[:, 2] ** 2
+        below = (x[:, 1] < 0.0) & (x[:, 1] >= -DOMAIN_ROUNDING)
+        x[below, 1] = 0.0
+        above = (x[:, 1] > x[:, 0]) & (x[:, 1] <= x[:, 0] + DOMAIN_ROUNDING)
+        x[above, 1] = x[above, 0]
         return x
 
     def from_x(self, x: np.ndarray, p: float) -> np.ndarray:
