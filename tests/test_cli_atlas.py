@@ -103,3 +103,18 @@ def test_reproduce_runs_the_atlas_and_the_compliance_study(tmp_path):
     parser = build_parser()
     for argv in steps(tmp_path):
         assert callable(parser.parse_args(argv).run)
+
+
+def test_a_range_without_thresholds_says_so_and_leaves_no_file_of_an_earlier_run(tmp_path,
+                                                                                   capsys):
+    assert main(["atlas", "--k-min", "0.1", "--k-max", "10", "--no-figure", "--out",
+                 str(tmp_path)]) == 0
+    assert len((tmp_path / "atlas_junction.csv").read_text().splitlines()) > 1
+    capsys.readouterr()
+    assert main(["atlas", "--k-min", "1", "--k-max", "1.1", "--no-figure", "--out",
+                 str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "no threshold in this range" in out
+    assert "not in this range (files with no rows): junction" in out
+    # the junction (born at k = sqrt 2) does not exist here: its file is rewritten empty
+    assert (tmp_path / "atlas_junction.csv").read_text().splitlines()[1:] == []

@@ -176,3 +176,14 @@ def test_bad_output_paths_are_refused_before_anything_is_computed(argv, message,
     assert exit_info.value.code == 2
     assert message.replace("DIR", str(tmp_path)) in capsys.readouterr().err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["f"]
+
+
+def test_ctrl_c_ends_with_a_line_and_exit_code_130_not_a_traceback(monkeypatch, capsys):
+    from groove_model.cli import solve
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(solve, "run", interrupted)
+    assert main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1"]) == 130
+    assert capsys.readouterr().err == "groove solve: interrupted\n"

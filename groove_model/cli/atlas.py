@@ -61,7 +61,7 @@ def run(args) -> int:
     """Trace the atlas; write nothing and return 1 if a curve failed, else write and 0."""
     # Imported here, not at the top: the atlas loads the engine, scipy and pandas, and the
     # figure matplotlib, which `groove --help` should not wait for.
-    from ..io.atlas import write_atlas
+    from ..io.atlas import STANDARD_CURVES, write_atlas
     from ..tracing.atlas import trace_atlas
 
     if not args.k_min < args.k_max:
@@ -87,6 +87,11 @@ def run(args) -> int:
     for t in atlas.thresholds:
         print(f"  {t.name:<10} k = {t.value:.15g}  (gamma, delta) = ({t.x[0]:.12g}, "
               f"{t.x[1]:.3g}), residual {t.residual:.1e}: {t.what}")
+    if not atlas.thresholds:
+        print("  no threshold in this range: the diagram has the same shape for every k in it")
+    absent = [name for name in STANDARD_CURVES if name not in atlas.curves]
+    if absent:
+        print(f"  not in this range (files with no rows): {', '.join(absent)}")
     if not args.no_figure:
         # Imported here: matplotlib is needed for the figure only.
         from ..plots.atlas import save_atlas_figure

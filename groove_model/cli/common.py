@@ -27,6 +27,7 @@ if TYPE_CHECKING:  # the model loads numpy, which `groove --help` does not need
 
 __all__ = [
     "EXIT_FAILED",
+    "EXIT_INTERRUPTED",
     "EXIT_OK",
     "EXIT_USAGE",
     "FIGURE_FORMATS",
@@ -49,6 +50,8 @@ __all__ = [
 ]
 
 EXIT_OK, EXIT_FAILED, EXIT_USAGE = 0, 1, 2
+#: interrupted by Ctrl-C (128 + SIGINT, as shells report it)
+EXIT_INTERRUPTED = 130
 FIGURE_FORMATS = ("png", "svg", "pdf")
 
 

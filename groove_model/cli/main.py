@@ -14,7 +14,7 @@ import sys
 from .. import __version__
 from . import atlas, audit, compliance, plot, reproduce, solve, sweep, trace
 from . import map as regime_map
-from .common import EXIT_FAILED, EXIT_USAGE, UsageError, add_verbose
+from .common import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, UsageError, add_verbose
 
 __all__ = ["build_parser", "main"]
 
@@ -62,6 +62,10 @@ def main(argv=None) -> int:
         # Python from complaining about stdout when it exits.
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_FAILED
+    except KeyboardInterrupt:
+        # Ctrl-C: files are written whole or not at all, so there is nothing to clean up here
+        print(f"groove {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except UsageError as exc:
         parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
     except OSError as exc:

@@ -24,7 +24,7 @@ from .atomic import atomic_write
 if TYPE_CHECKING:  # reading back is the only use of pandas here
     import pandas as pd
 
-__all__ = ["atlas_report", "read_atlas_csv", "write_atlas"]
+__all__ = ["STANDARD_CURVES", "atlas_report", "read_atlas_csv", "write_atlas"]
 
 
 def _cell(value) -> str:
@@ -45,12 +45,22 @@ def _csv(columns, rows, path: Path) -> Path:
     return atomic_write(path, write)
 
 
+#: the curves of the paper's special points: each gets its file, with no rows where the curve
+#: does not exist in the range (so a file of an earlier run never stands for this one)
+STANDARD_CURVES = ("junction", "dr_limit_fold_delta", "rs_no_roll_fold_gamma")
+
+
 def write_atlas(atlas: Atlas, directory, stem: str = "atlas") -> list[Path]:
-    """Write the CSV files and the report of ``atlas`` into ``directory`` (created if needed)."""
+    """Write the CSV files and the report of ``atlas`` into ``directory`` (created if needed).
+
+    One CSV per curve; a curve of :data:`STANDARD_CURVES` that does not exist in the range gets
+    a file with the header only.
+    """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
-    paths = [_csv(ATLAS_COLUMNS, atlas.curve_table(name), directory / f"{stem}_{name}.csv")
-             for name in atlas.curves]
+    names = [*atlas.curves, *(n for n in STANDARD_CURVES if n not in atlas.curves)]
+    paths = [_csv(ATLAS_COLUMNS, atlas.curve_table(name) if name in atlas.curves else [],
+                  directory / f"{stem}_{name}.csv") for name in names]
     paths.append(_csv(THRESHOLD_COLUMNS, atlas.thresholds_table(),
                       directory / f"{stem}_thresholds.csv"))
     report = atlas_report(atlas)
