@@ -414,3 +414,14 @@ def test_the_smallest_supported_k_is_audited_without_error_or_doubt():
     assert "inconclusive" not in verdicts.values(), verdicts
     assert verdicts["dr_limit_to_origin_along_diagonal"] == "holds"
     assert verdicts["rs_no_roll_small_k_ends"] == "holds"
+
+
+def test_the_largest_supported_k_is_audited_without_doubt():
+    # at k >= 1e3 the probe next to the axis (delta = 1e-9) moved the forces by 2 k delta, and at
+    # k >= 1e5 the physical part of rs_no_roll (5e-4 below pi/4 in delta at k = 1e6) fell
+    # between two rows: three claims were inconclusive
+    report = run_audit([1e3, 1e6])
+    verdicts = {c.id: c.verdict for c in report.claims}
+    assert "inconclusive" not in verdicts.values(), verdicts
+    for claim in ("rs_no_roll_line_stuck", "rs_no_roll_large_k_ends"):
+        assert verdicts[claim] == "holds", claim

@@ -48,6 +48,8 @@ VIOLATION = 1e-6
 GRID_N = 200
 MAP_N = 200
 LINE_N = 200
+#: extra rows of the rs_no_roll line next to pi/4 for k > 100 (its physical part is that short)
+TOP_ROWS = 40
 #: The double-rolling state does not depend on ``k`` (only its validity does).
 _ANY_K = Parameters(1.0)
 
@@ -120,9 +122,14 @@ class Context:
         return self.cached("dr_no_roll", compute)
 
     def rs_no_roll(self, k):
-        """``(gamma, delta, state)`` on rows ``delta in (0, pi/4)``."""
+        """``(gamma, delta, state)`` on rows ``delta in (0, pi/4)``: evenly spaced, and for
+        ``k > 100`` also :data:`TOP_ROWS` rows geometrically closer to ``pi/4`` (1e-2 to 1e-7
+        below it), where the line's physical part lies (from the junction, ``~0.5/k``
+        below ``pi/4`` in delta, to the corner)."""
         def compute():
             d = 0.25 * math.pi * np.linspace(0.0, 1.0, LINE_N + 1)[1:-1]
+            if k > 100.0:
+                d = np.union1d(d, 0.25 * math.pi - np.geomspace(1e-2, 1e-7, TOP_ROWS))
             g = rs_no_roll_gamma(k, d)
             return g, d, rolling_sliding_state(g, d, Parameters(k))
         return self.cached(("rs_no_roll", k), compute)
