@@ -287,6 +287,11 @@ def _raised(function: str, problem: Problem, x: np.ndarray, exc: Exception):
 def _wrong_shape(function: str, problem: Problem, x: np.ndarray, found: tuple,
                  expected: tuple):
     n = expected[0]
+    hint = ""
+    if function == "residual" and len(found) == 1:
+        hint = (f"; or x0 has the wrong length: {found[0]} equations need {found[0] + 1} "
+                "unknowns")
     return CallbackShapeError(
         f"{function}(x) returned shape {found}, expected {expected} (n = {n} equations in "
-        f"n + 1 = {n + 1} unknowns) at x={problem.describe(np.asarray(x, dtype=float))}")
+        f"n + 1 = {n + 1} unknowns) at x={problem.describe(np.asarray(x, dtype=float))}"
+        + hint)

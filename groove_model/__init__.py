@@ -61,6 +61,8 @@ _SOURCES = {
     "trace_boundaries": "tracing.tracer",
     "trace_many": "tracing.sweep",
     "BoundarySet": "tracing.curves",
+    "TraceError": "tracing.curves",
+    "SweepError": "tracing.sweep",
     "Atlas": "tracing.atlas",
     "trace_atlas": "tracing.atlas",
     "trace_atlas_in_poisson": "tracing.atlas",

@@ -10,7 +10,12 @@ import pytest
 
 from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
-from groove_model.tracing.atlas import ATLAS_COLUMNS, trace_atlas, trace_atlas_in_poisson
+from groove_model.tracing.atlas import (
+    ATLAS_COLUMNS,
+    atlas_in_k,
+    trace_atlas,
+    trace_atlas_in_poisson,
+)
 from groove_model.tracing.topology import thresholds
 
 SQRT2 = math.sqrt(2.0)
@@ -178,7 +183,7 @@ def test_a_fold_unresolved_at_the_range_end_is_found_inside(nu):
     table = thresholds(c)
     assert [t.name for t in table.points] == ["k_fold", "k_branch", "k_cross"]
     assert table.points[0].value == pytest.approx(c / SQRT2, rel=1e-12)
-    assert set(trace_atlas((1e-4 * c, 1e6 * c), compliance=c).curves) == set(TRACED)
+    assert set(atlas_in_k((1e-4 * c, 1e6 * c), c).curves) == set(TRACED)
     bs = trace_boundaries(Parameters(189.6420639321449, compliance=Compliance(c)))
     assert bs.ok, bs.failures
     assert len(bs.curves["rs_no_roll"].special("fold_gamma")) == 1
@@ -204,3 +209,17 @@ def test_no_atlas_point_leaves_the_domain_by_rounding(atlas):
         assert np.all(dense[:, 1] >= 0.0), curve.name
     for t in atlas.thresholds:
         assert 0.0 <= t.x[1] <= t.x[0], t.name
+
+
+@pytest.mark.parametrize("call, message", [
+    (lambda: trace_atlas((1e-6, 1e8)), "k = 1e-06 is outside the range the boundaries"),
+    (lambda: trace_atlas((1e5, 1e7)), "k = 10000000.0 is outside the range"),
+    (lambda: trace_atlas((1.0, 10.0), compliance=0.3), "compliance ratio c = 0.3 is outside"),
+    (lambda: trace_atlas_in_poisson(1e7), "k = 10000000.0 is outside the range"),
+    (lambda: trace_atlas_in_poisson(1.0, (-0.5, 0.5)), "Poisson ratio nu = -0.5 is outside"),
+])
+def test_the_atlas_refuses_what_is_not_traced(call, message):
+    # trace_atlas((1e-6, 1e8)) ended in a bare RuntimeError from the engine, (1e5, 1e7) and
+    # c = 0.3 were traced unchecked (with a "cusp" for c = 0.3)
+    with pytest.raises(ValueError, match=message):
+        call()

@@ -280,6 +280,11 @@ def check_domain(gamma, delta):
     ValueError
         Naming the first offending quantity, its value and the allowed range.
     """
+    for name, value in (("gamma", gamma), ("delta", delta)):
+        kind = np.asarray(value).dtype.kind
+        if kind not in "fiu":  # strings, booleans, None and other objects are not angles
+            raise TypeError(f"{name} must be a real number or an array of them, got "
+                            f"{value!r}")
     try:
         gamma_a = np.asarray(gamma, dtype=float)
         delta_a = np.asarray(delta, dtype=float)

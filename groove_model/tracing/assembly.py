@@ -316,5 +316,5 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
                          physical=physical[keep], special_points=tuple(points),
                          status=status, ok=ok, residual=residual, engine=(curve,),
                          start=physical_start, end=end if np.any(physical) else Where.NOWHERE,
-                         engine_rows=np.flatnonzero(keep))
+                         engine_rows=np.flatnonzero(keep), params=system.params)
 

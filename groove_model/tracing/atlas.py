@@ -47,8 +47,8 @@ from __future__ import annotations
 import dataclasses
 import math
 import time
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, cast
+from dataclasses import dataclass
+from typing import cast
 
 import numpy as np
 
@@ -64,13 +64,20 @@ from continuation import (
 )
 
 from ..model.boundaries import Condition
-from ..model.parameters import Compliance, check_friction
+from ..model.parameters import (
+    Compliance,
+    check_friction,
+    check_traced_friction,
+    check_traced_poisson,
+    check_traced_ratio,
+)
+from .atlas_result import ATLAS_COLUMNS, THRESHOLD_COLUMNS, Atlas, AtlasCurve, Threshold
 from .curves import PointKind
 from .families import Axis, BoundaryFamily, domain_events, junction_event, special_points
 
 __all__ = ["ATLAS_COLUMNS", "ATLAS_OPTIONS", "DEFAULT_K_RANGE", "DEFAULT_POISSON_RANGE",
            "POISSON_OPTIONS", "THRESHOLD_COLUMNS", "Atlas", "AtlasCurve", "Threshold",
-           "trace_atlas", "trace_atlas_in_poisson"]
+           "atlas_in_k", "trace_atlas", "trace_atlas_in_poisson"]
 
 DEFAULT_K_RANGE = (1e-4, 1e6)
 DEFAULT_POISSON_RANGE = (0.0, 0.5)
@@ -95,14 +102,6 @@ COINCIDENT = 1e-9
 #: tracer's tolerance, and its events there (delta = gamma) are rounding; the atlas fails
 CORNER_RESOLUTION = 1e-10
 
-ATLAS_COLUMNS = ("curve", "k", "nu", "compliance", "gamma", "delta", "beta_L", "upsilon",
-                 "physical", "threshold")
-
-THRESHOLD_COLUMNS = ("threshold", "axis", "value", "fixed", "gamma", "delta", "beta_L",
-                     "upsilon", "curve", "what", "equations", "residual", "also")
-
-if TYPE_CHECKING:  # the tables are made with pandas only on request
-    import pandas as pd
 
 _FOLD_NAMES = {0: "gamma", 1: "delta"}
 _BOUNDARIES = ("dr_limit", "rs_no_roll", "dr_no_roll")
@@ -137,196 +136,6 @@ _KNOWN = {
 }
 
 
-@dataclass(frozen=True)
-class Threshold:
-    """A value of ``k`` (or ``nu``) where the picture changes: a codimension-2 point.
-
-    Attributes
-    ----------
-    name : str
-        ``k_fold``, ``k_branch``, ``k_cross`` (``nu_...`` on the ``nu`` axis), or
-        ``"<curve>: <event>"`` for one the atlas did not know of.
-    value : float
-        ``k`` or ``nu``.
-    x : ndarray, shape (4,)
-        ``(gamma, delta, beta_L, upsilon)`` there.
-    curve : str
-        The atlas curve it lies on.
-    what : str
-        What happens, in words.
-    equations : tuple of str
-        Its defining equations: the curve's four and the event's (five in ``x`` and ``p``).
-    residual : float
-        ``max |F|`` of the defining equations at the polished point (chart units).
-    accuracy : float
-        Width in arclength of the final root bracket of its location.
-    also : tuple of str
-        Other events of the same curve that vanish at the same point.
-    """
-
-    name: str
-    value: float
-    x: np.ndarray = field(repr=False)
-    curve: str
-    what: str
-    equations: tuple[str, ...] = field(repr=False)
-    residual: float
-    accuracy: float
-    also: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True, eq=False)
-class AtlasCurve:
-    """One special point followed along the axis.
-
-    Attributes
-    ----------
-    name : str
-        ``junction`` or ``<boundary>_fold_<gamma|delta>``.
-    boundary : str
-        The boundary the point is a special point of (``dr_limit`` for the junction).
-    kind : PointKind
-        ``JUNCTION``, ``FOLD_GAMMA`` or ``FOLD_DELTA``.
-    axis : Axis
-    p : ndarray, shape (m,)
-        The parameter (``log k`` or ``nu``) of each row, rows in order along the curve.
-    x : ndarray, shape (m, 4)
-        ``(gamma, delta, beta_L, upsilon)``.
-    physical : ndarray of bool, shape (m,)
-        Whether the point lies on the physical part of its boundary.
-    traces : tuple of Codim2Curve
-        The engine's curves (in the chart of ``family``), for dense output.
-    """
-
-    name: str
-    boundary: str
-    kind: PointKind
-    axis: Axis
-    p: np.ndarray = field(repr=False)
-    x: np.ndarray = field(repr=False)
-    physical: np.ndarray = field(repr=False)
-    traces: tuple = field(repr=False)
-    family: BoundaryFamily = field(repr=False)
-
-    @property
-    def values(self) -> np.ndarray:
-        """``k`` or ``nu`` of each row."""
-        return self.axis.value(self.p)
-
-    def dense(self, per_step: int = 8) -> tuple[np.ndarray, np.ndarray]:
-        """``(values, x)`` on the Hermite arcs between the rows, for drawing (not corrected
-        onto the curve; :meth:`at` is exact)."""
-        parts = [trace.dense(per_step) for trace in self.traces]
-        z = np.concatenate(parts) if parts else np.zeros((0, 5))
-        return self.axis.value(z[:, -1]), self.family.to_x(z) if len(z) else np.zeros((0, 4))
-
-    def at(self, value: float) -> list[np.ndarray]:
-        """The point(s) ``x`` of the curve at ``k`` (or ``nu``) ``= value``, corrected onto it.
-
-        Empty where the curve does not exist.
-        """
-        p = self.axis.to_p(value)
-        found: list[np.ndarray] = []
-        for trace in self.traces:
-            for z in trace.at(p):
-                x = self.family.to_x(z)[0]
-                if not any(np.max(np.abs(x - other)) <= 1e-12 for other in found):
-                    found.append(x)
-        return found
-
-    def physical_at(self, value: float) -> list[np.ndarray]:
-        """:meth:`at`, only the points on the physical part of the boundary."""
-        p = self.axis.to_p(value)
-        return [x for x in self.at(value)
-                if self.family.physical(np.append(self.family.from_x(x, p), p))]
-
-
-@dataclass(frozen=True, eq=False)
-class Atlas:
-    """The special points of the boundaries over a range of ``k`` (or ``nu``).
-
-    Attributes
-    ----------
-    axis : Axis
-    range : (float, float)
-        The range of ``k`` (or ``nu``).
-    curves : dict of str to AtlasCurve
-    thresholds : tuple of Threshold
-        In increasing order of their value.
-    failures : tuple of str
-        Curves that could not be followed to the end of the range or their death.
-    seconds : float
-        Wall time of the computation.
-    """
-
-    axis: Axis
-    range: tuple[float, float]
-    curves: dict = field(repr=False)
-    thresholds: tuple[Threshold, ...]
-    failures: tuple[str, ...] = ()
-    seconds: float = 0.0
-
-    @property
-    def ok(self) -> bool:
-        return not self.failures
-
-    def threshold(self, name: str) -> Threshold:
-        """The threshold called ``name``.
-
-        Raises
-        ------
-        KeyError
-            If the atlas has none of that name (e.g. outside its range).
-        """
-        for threshold in self.thresholds:
-            if threshold.name == name:
-                return threshold
-        raise KeyError(f"no threshold {name!r} in the atlas; it has "
-                       f"{', '.join(t.name for t in self.thresholds) or 'none'}")
-
-    def curve_table(self, name: str) -> list[tuple]:
-        """The rows of one curve, in the order of :data:`ATLAS_COLUMNS`."""
-        curve = self.curves[name]
-        marks = [""] * len(curve.p)
-        for threshold in self.thresholds:
-            if threshold.curve == name:
-                marks[int(np.argmin(np.abs(curve.p - self.axis.to_p(threshold.value))))] = \
-                    threshold.name
-        nu = _poisson(self.axis)
-        rows = []
-        for i, p in enumerate(curve.p):
-            k, c = self.axis.friction_and_ratio(p)
-            rows.append((name, k, float(p) if self.axis.name == "nu" else nu, c,
-                         *(float(v) for v in curve.x[i]), bool(curve.physical[i]), marks[i]))
-        return rows
-
-    def thresholds_table(self) -> list[tuple]:
-        """The thresholds, in the order of :data:`THRESHOLD_COLUMNS`."""
-        return [(t.name, self.axis.name, t.value, self.axis.fixed, *(float(v) for v in t.x),
-                 t.curve, t.what, "; ".join(t.equations), t.residual, "; ".join(t.also))
-                for t in self.thresholds]
-
-    def curve_frame(self, name: str) -> pd.DataFrame:
-        """:meth:`curve_table` as a DataFrame."""
-        import pandas as pd  # only the tables need it: `groove atlas` writes without it
-
-        return pd.DataFrame(self.curve_table(name), columns=list(ATLAS_COLUMNS))
-
-    def thresholds_frame(self) -> pd.DataFrame:
-        """:meth:`thresholds_table` as a DataFrame."""
-        import pandas as pd  # only the tables need it: `groove atlas` writes without it
-
-        return pd.DataFrame(self.thresholds_table(), columns=list(THRESHOLD_COLUMNS))
-
-
-def _poisson(axis: Axis) -> float:
-    """The Poisson ratio of a fixed compliance ratio (NaN if none gives it)."""
-    c = axis.fixed
-    # c = 2 (1 - nu)/(2 - nu)  <=>  nu = 2 (1 - c)/(2 - c)
-    nu = 2.0 * (1.0 - c) / (2.0 - c) if c != 2.0 else math.nan
-    return nu if -1.0 < nu <= 0.5 else math.nan
-
-
 def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None = None,
                 options: Options | None = None) -> Atlas:
     """Follow every special point of the boundaries over ``k`` in ``k_range``.
@@ -334,9 +143,10 @@ def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None =
     Parameters
     ----------
     k_range : (float, float)
-        ``k_min < k_max``, both finite and > 0.
+        ``k_min < k_max``, both in the traced range ``1e-4 <= k <= 1e6``.
     compliance : Compliance or float, optional
-        The compliance (or its ratio ``c``); default the paper's ``c = 1``.
+        The compliance (or its ratio ``c``, ``2/3 <= c <= 1``: Mindlin's for Poisson ratios
+        ``0 <= nu <= 1/2``); default the paper's ``c = 1``.
     options : continuation.Options, optional
         Engine settings of the curves (default :data:`ATLAS_OPTIONS`).
 
@@ -348,16 +158,29 @@ def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None =
     Raises
     ------
     ValueError
-        If the range is not ``0 < k_min < k_max < inf``.
+        If ``k_min >= k_max``, or the range or the ratio is outside the traced ranges (the
+        message names the value and the range).
     """
-    k_min, k_max = (check_friction(k) for k in k_range)
-    if not k_min < k_max:
-        raise ValueError(f"k_range = {tuple(k_range)!r} must satisfy k_min < k_max")
+    k_min, k_max = (check_traced_friction(check_friction(k)) for k in k_range)
     if compliance is None:
         compliance = Compliance()
     ratio = compliance.ratio if isinstance(compliance, Compliance) else Compliance(
         compliance).ratio
-    return _trace(Axis("k", ratio), math.log(k_min), math.log(k_max), (k_min, k_max), options)
+    return atlas_in_k((k_min, k_max), check_traced_ratio(ratio), options)
+
+
+def atlas_in_k(k_range, ratio: float, options: Options | None = None) -> Atlas:
+    """:func:`trace_atlas` without the check of the traced ranges.
+
+    For the tracer's topology table (:func:`~groove_model.tracing.topology.thresholds`), which
+    reads the atlas over ``1e-4 c <= k <= 1e6 c`` (the same range of ``k/c`` for every ``c``),
+    whose lower end lies below ``1e-4`` for ``c < 1``.
+    """
+    k_min, k_max = (check_friction(k) for k in k_range)
+    if not k_min < k_max:
+        raise ValueError(f"k_range = {tuple(k_range)!r} must satisfy k_min < k_max")
+    return _trace(Axis("k", Compliance(ratio).ratio), math.log(k_min), math.log(k_max),
+                  (k_min, k_max), options)
 
 
 def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
@@ -370,11 +193,11 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
     Raises
     ------
     ValueError
-        If ``k`` or the range is invalid (``-1 < nu_min < nu_max <= 1/2``).
+        If ``k`` or the range is invalid: ``1e-4 <= k <= 1e6`` and
+        ``0 <= nu_min < nu_max <= 1/2`` (the traced ranges).
     """
-    k = check_friction(k)
-    # from_poisson records the checked Poisson ratio (never None)
-    nu_min, nu_max = (cast(float, Compliance.from_poisson(nu).poisson) for nu in nu_range)
+    k = check_traced_friction(check_friction(k))
+    nu_min, nu_max = (check_traced_poisson(nu) for nu in nu_range)
     if not nu_min < nu_max:
         raise ValueError(f"nu_range = {tuple(nu_range)!r} must satisfy nu_min < nu_max")
     return _trace(Axis("nu", k), nu_min, nu_max, (nu_min, nu_max), options or POISSON_OPTIONS)
@@ -480,7 +303,7 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
     order = sorted(starts.items(), key=lambda item: (
         item[1].kind is not PointKind.JUNCTION, _BOUNDARIES.index(item[1].boundary),
         item[1].coordinate or 0, item[0]))
-    curves = {name: _curve(start, [t for s, t in followed if s is start])
+    curves = {name: _curve(start, [t for s, t in followed if s is start], (p_lo, p_hi))
               for name, start in order}
     thresholds = [t for start, trace in followed
                   for t in _thresholds(start, trace, len(_events(start)))]
@@ -516,8 +339,9 @@ def _inner_seed(axis: Axis, p_lo: float, p_hi: float) -> float | None:
     return p if p_lo < p < p_hi else None
 
 
-def _curve(start: _Start, traces: list[Codim2Curve]) -> AtlasCurve:
-    """The rows of one curve, in increasing ``p`` from its lower end."""
+def _curve(start: _Start, traces: list[Codim2Curve], p_range) -> AtlasCurve:
+    """The rows of one curve, in increasing ``p`` from its lower end; a ``p`` beyond an end of
+    ``p_range`` by rounding (``nu = -2e-13``) is put on that end."""
     rows: list[np.ndarray] = []
     # increasing p: a start inside the range is followed both ways (down, then up from it)
     for trace in traces:
@@ -526,6 +350,9 @@ def _curve(start: _Start, traces: list[Codim2Curve]) -> AtlasCurve:
             z = z[1:]  # the shared start
         rows.append(z)
     z = np.concatenate(rows) if rows else np.zeros((0, 5))
+    for end, beyond in ((p_range[0], z[:, -1] < p_range[0]), (p_range[1], z[:, -1] > p_range[1])):
+        rounding = beyond & (np.abs(z[:, -1] - end) <= 1e-9 * (1.0 + abs(end)))
+        z[rounding, -1] = end
     family = start.family
     return AtlasCurve(start.name, start.boundary, start.kind, family.axis, z[:, -1].copy(),
                       family.to_x(z) if len(z) else np.zeros((0, 4)),

@@ -141,9 +141,9 @@ class BoundaryCurve:
         False if the engine failed or the curve differs from the expected topology; the
         points traced are kept.
     residual : float
-        Largest ``|H_i| / scale_i`` over the points, in the ``x`` form of the paper's equations
-        (:meth:`groove_model.boundaries.BoundarySystem.scaled_residual`: each equation relative
-        to the size of its terms, which grow with ``k``).
+        Largest ``|H_i| / scale_i`` over the points, in the ``x`` form of the paper's
+        equations (:meth:`groove_model.model.boundaries.BoundarySystem.scaled_residual`: each
+        equation relative to the size of its terms, which grow with ``k``).
     start, end : Where
         Where the physical part starts and ends (``NOWHERE`` if it has none or the engine
         failed before its end).
@@ -152,6 +152,9 @@ class BoundaryCurve:
     certificate : continuation.Certificate or None
         The proof in ball arithmetic (``trace_boundaries(k, certify=True)``); ``None`` if
         certification was not asked for.
+    params : Parameters or None
+        The parameters of the trace (``k`` and the compliance); ``None``: ``k`` with the
+        paper's compliance.
     """
 
     name: str
@@ -169,6 +172,7 @@ class BoundaryCurve:
     engine_rows: np.ndarray = field(default_factory=lambda: np.zeros(0, int), repr=False,
                                     compare=False)
     certificate: Certificate | None = field(default=None, repr=False, compare=False)
+    params: Parameters | None = field(default=None, repr=False, compare=False)
 
     @property
     def certified(self) -> bool | None:
@@ -184,13 +188,12 @@ class BoundaryCurve:
         kind = PointKind(kind)
         return tuple(p for p in self.special_points if p.kind is kind)
 
-    def to_frame(self, params: Parameters | None = None) -> pd.DataFrame:
-        """The CSV table of this boundary (columns :data:`CSV_COLUMNS`); ``params``: those of
-        the trace (default ``k`` with the paper's compliance; :meth:`BoundarySet.to_frame`
-        passes its own)."""
+    def to_frame(self) -> pd.DataFrame:
+        """The CSV table of this boundary (columns :data:`CSV_COLUMNS`), with the compliance
+        of its trace."""
         import pandas as pd  # only the tables need it, not the tracer
 
-        return pd.DataFrame(self._columns(params or Parameters(self.k)),
+        return pd.DataFrame(self._columns(self.params or Parameters(self.k)),
                             columns=list(CSV_COLUMNS))
 
     def _columns(self, params: Parameters) -> dict:

@@ -141,7 +141,8 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     Parameters
     ----------
     ks : iterable of float
-        Friction coefficients, each finite and > 0 (duplicates are traced again).
+        Friction coefficients, each in the traced range 1e-4 <= k <= 1e6 (duplicates are
+        traced again).
     jobs : int or None
         ``None`` or 1: trace in this process; ``N >= 2``: on a pool of ``N`` processes.
     executor : concurrent.futures.Executor, optional
@@ -204,7 +205,7 @@ def trace_many(ks: Iterable[float], jobs: int | None = None, *,
     Parameters
     ----------
     ks : iterable of float
-        Friction coefficients, each finite and > 0.
+        Friction coefficients, each in the traced range 1e-4 <= k <= 1e6.
     jobs : int or None
         ``None`` or 1: in this process; ``N >= 2``: on a pool of ``N`` processes.
     executor : concurrent.futures.Executor, optional

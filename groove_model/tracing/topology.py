@@ -17,7 +17,7 @@ threshold       value (``c = 1``)    what happens
                                      its start, the seed ``(arctan(k/c), 0)``
 ``k_branch``    1.41421356237310     the junction is born at the branch point
                                      ``(arctan sqrt 2, 0)``, which the seed meets there
-``k_cross``     15.19939619365445    the junction passes the maximum of ``delta`` along
+``k_cross``     15.199396193654      the junction passes the maximum of ``delta`` along
                                      ``dr_limit``
 ==============  ===================  ===================================================
 
@@ -58,7 +58,7 @@ import math
 from dataclasses import dataclass
 
 from ..model.parameters import Parameters
-from .atlas import Atlas, Threshold, trace_atlas
+from .atlas import Atlas, Threshold, atlas_in_k
 from .curves import PointKind
 
 __all__ = ["REFERENCE_RANGE", "THRESHOLD_BAND", "CurveTopology", "Thresholds", "TopologyRange",
@@ -265,7 +265,7 @@ def thresholds(c: float = 1.0) -> Thresholds:
         If the atlas failed.
     """
     low, high = REFERENCE_RANGE
-    return thresholds_from_atlas(trace_atlas((low * c, high * c), compliance=c))
+    return thresholds_from_atlas(atlas_in_k((low * c, high * c), c))
 
 
 def _merge(a: CurveTopology, b: CurveTopology) -> CurveTopology:

@@ -16,7 +16,7 @@ or from the seed) and checks every curve against it:
 * ``dr_no_roll`` leaves the symmetric family ``delta = 0`` at the branch point
   ``(arctan sqrt 2, 0)``; its physical part (``T/N_L <= k``) ends at the junction, so it has
   one only for ``k > k_branch``. It is traced in its deflated form (the no-roll torque divided
-  by ``beta_L - beta_R``, :mod:`groove_model.boundaries`), whose zero set is this branch alone
+  by ``beta_L - beta_R``, :mod:`groove_model.model.boundaries`), whose zero set is this branch alone
   and passes the branch point as a regular point: points next to the branch point are then as
   accurate as anywhere (with the paper's form, which also vanishes on the symmetric family,
   a point at distance ``d`` from the branch point carries errors of order ``eps / d``, so the
@@ -27,11 +27,11 @@ or from the seed) and checks every curve against it:
 
 The curves are traced in the chart ``y = (gamma / g, delta / g, w, upsilon)``, ``beta_L = w^2``,
 where every residual is analytic and the corner ``beta_L = 0`` is a regular point located as the
-event ``w = 0`` (see :mod:`groove_model.boundaries`); ``g = min(1, arctan(k/c))`` for the limit
-curves, whose extent in ``gamma`` and ``delta`` is ``arctan(k/c)``, and 1 for the others. Results
-are reported in ``x = (gamma, delta, beta_L, upsilon)``. Each curve is cut to its physical part
-(its regime valid) at validity events the engine locates exactly; ``keep_unphysical=True``
-keeps the rest, flagged ``physical = False``.
+event ``w = 0`` (see :mod:`groove_model.model.boundaries`); ``g = min(1, arctan(k/c))`` for the
+limit curves, whose extent in ``gamma`` and ``delta`` is ``arctan(k/c)``, and 1 for the others.
+Results are reported in ``x = (gamma, delta, beta_L, upsilon)``. Each curve is cut to its
+physical part (its regime valid) at validity events the engine locates exactly;
+``keep_unphysical=True`` keeps the rest, flagged ``physical = False``.
 
 Nothing is reported as traced that has not been checked: the engine brackets every zero of an
 event and of the tangent's ``gamma`` and ``delta`` components inside each step (pairs of zeros
@@ -309,7 +309,9 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         (0 = gamma, 1 = delta); the topology check expects both.
     gamma_min : float, optional
         Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
-        ``min(1e-3, arctan(k/c) / 100)``.
+        ``min(1e-3, arctan(k/c) / 100)``, the value the tracer is verified with. Another value
+        may stop the limit curves before their expected special points or closer to the
+        origin than they are resolved: such runs fail (``ok`` False), they do not mislead.
     raise_on_failure : bool
         Raise :class:`TraceError` (carrying everything traced) if any boundary failed.
     certify : bool
@@ -344,6 +346,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     options = options or DEFAULT_OPTIONS
     if gamma_min is None:
         gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
+    if isinstance(gamma_min, bool) or not isinstance(gamma_min, (int, float, np.floating)):
+        raise TypeError(f"gamma_min must be a real number, got {gamma_min!r}")
     if not (0.0 < gamma_min < params.gamma_limit):
         raise ValueError(f"gamma_min = {gamma_min!r} is outside the allowed range "
                          f"0 < gamma_min < arctan(k/c) = {params.gamma_limit!r}")
