@@ -9,27 +9,20 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
-from typing import NamedTuple, cast
+from typing import cast
 
 import numpy as np
 
 from .corrector import NON_FINITE, SINGULAR, Correction, correct
-from .errors import CallbackError, CallbackShapeError, ContinuationError
-from .events import Event, crossed
-from .locate import (
-    EventNotFinite,
-    Located,
-    LocateError,
-    Node,
-    StepScan,
-    event_value,
-    locate_zero,
-    refine_branch_point,
-)
+from .errors import CallbackError, CallbackShapeError
+from .events import Event
 from .options import Options
 from .predictor import arc_length, extrapolate, hermite
 from .problem import Evaluator, Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
+from .run import Run
+from .scan import EventNotFinite, LocateError, Node
+from .special import add_step, fold_inconsistency, scan_step
 
 __all__ = ["follow", "trace"]
 
@@ -41,83 +34,8 @@ SINGULAR_RATIO = 1e-8
 #: accepted points interpolated by the predictor (3: quintic Hermite)
 PREDICTOR_NODES = 3
 
-#: components of a singular start's tangent at most this large are taken as zero
-BRANCH_TANGENT_NOISE = 1e-7
-
 #: a closing point must lie this close (relative to 1 + max|x0|) to the start
 CLOSE_TOLERANCE = 1e-6
-
-
-class _Run:
-    """Growing lists of a run and the bookkeeping of special points (internal)."""
-
-    def __init__(self, problem: Problem, options: Options, events: tuple[Event, ...],
-                 evaluator: Evaluator) -> None:
-        self.problem = problem
-        self.options = options
-        self.events = events
-        self.evaluator = evaluator
-        self.x: list[np.ndarray] = []
-        self.s: list[float] = []
-        self.tangents: list[np.ndarray] = []
-        self.iterations: list[int] = []
-        self.residuals: list[float] = []
-        self.special: list[SpecialPoint] = []
-        self.rejected = 0
-
-    def node(self, x, s, tangent, det, residual, iterations) -> Node:
-        """A curve point with its event values; :class:`EventNotFinite` if one is not finite."""
-        values = [event_value(event, x, self.problem.describe) for event in self.events]
-        for event, value in zip(self.events, values, strict=True):
-            if not math.isfinite(value):
-                raise EventNotFinite(f"event '{event.name}' is {value!r} at "
-                                     f"x={self.problem.describe(x)}")
-        return Node(x, s, tangent, det, residual, iterations, values)
-
-    def append(self, x, s, tangent, residual, iterations) -> int:
-        self.x.append(x)
-        self.s.append(s)
-        self.tangents.append(tangent)
-        self.residuals.append(residual)
-        self.iterations.append(iterations)
-        return len(self.s) - 1
-
-    def mark(self, kind, name, index, accuracy, coordinate=None, event=None) -> SpecialPoint:
-        point = SpecialPoint(kind=kind, name=name, index=index, x=self.x[index],
-                             s=self.s[index], residual=self.residuals[index],
-                             accuracy=accuracy, coordinate=coordinate,
-                             tangent=self.tangents[index], event=event)
-        self.special.append(point)
-        logger.info("%s '%s' at s=%.12g, x=%s (accuracy %.2g)", kind, name, point.s,
-                    self.problem.describe(point.x), accuracy)
-        return point
-
-    def curve(self, status: Status, message: str, n1: int, raise_failure: bool = True) -> Curve:
-        if self.s:
-            self.mark("end", status.name.lower(), len(self.s) - 1,
-                      self.options.tol)
-        s = np.array(self.s, dtype=float)
-        curve = Curve(
-            x=np.array(self.x, dtype=float).reshape(-1, n1),
-            s=s,
-            tangents=np.array(self.tangents, dtype=float).reshape(-1, n1),
-            ds=np.diff(s, prepend=s[:1]) if s.size else s.copy(),
-            newton_iterations=np.array(self.iterations, dtype=int),
-            special_points=tuple(sorted(self.special, key=lambda p: (p.index, p.s))),
-            status=status,
-            message=message,
-            residual_evals=self.evaluator.residual_evals,
-            jacobian_evals=self.evaluator.jacobian_evals,
-            rejected_steps=self.rejected,
-            residuals=np.array(self.residuals, dtype=float),
-            problem=self.problem,
-            options=self.options,
-        )
-        if status.failed:
-            logger.warning("continuation failed: %s", message)
-            if self.options.raise_on_failure and raise_failure:
-                raise ContinuationError(message, curve)
-        return curve
 
 
 def trace(
@@ -248,7 +166,7 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
             raise ValueError(f"Options.fold_coordinates entries must be < {n1}, got {i}")
     evaluator = Evaluator(problem) if evaluator is None else evaluator
     evaluator.expect(n1)
-    run = _Run(problem, options, events, evaluator)
+    run = Run(problem, options, events, evaluator)
     try:
         try:
             start, status, message = _start(run, x0, direction, tangent, at_branch_point)
@@ -271,7 +189,7 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
 class _Stepper:
     """The state of a run between steps: the point, the predictor's nodes, the step size."""
 
-    def __init__(self, run: _Run, start: Node) -> None:
+    def __init__(self, run: Run, start: Node) -> None:
         self.run = run
         self.start = start
         self.point = start
@@ -290,7 +208,7 @@ class _Stepper:
         if self.status is None:
             return False
         if not self.status.failed:
-            inconsistency = _fold_inconsistency(self.run)
+            inconsistency = fold_inconsistency(self.run)
             if inconsistency:
                 self.status, self.message = Status.INCONSISTENT, inconsistency
         return True
@@ -317,7 +235,7 @@ class _Stepper:
         truncated = h >= options.max_arclength - point.s
         try:
             new, closing = self._accepted_point(correction, alpha, truncated)
-            found = _scan_step(run, point, new)
+            found = scan_step(run, point, new)
         except EventNotFinite as error:
             self.status, self.message = Status.EVENT_NOT_FINITE, (
                 f"{error}; the event's zeros cannot be found beyond s={point.s:.12g}: make the "
@@ -329,7 +247,7 @@ class _Stepper:
             self._reject(h, str(error), Status.NOT_LOCATED)
             return
         self.steps += 1
-        self._end(_add_step(run, point, new, found), closing, truncated, new)
+        self._end(add_step(run, point, new, found), closing, truncated, new)
         self.ds = max(options.ds_min,
                       min(options.ds_max, h * _step_multiplier(correction, alpha, order, options)))
         # a singular start (det 0) carries a given tangent, not a computed null vector,
@@ -381,7 +299,7 @@ class _Stepper:
             self.message = f"{Status.MAX_ARCLENGTH.value} s={new.s:.12g}"
 
 
-def _start(run: _Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
+def _start(run: Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
     """Correct ``x0`` onto the curve and orient its tangent; ``(point, status, message)``."""
     problem, options, evaluator = run.problem, run.options, run.evaluator
     n1 = x0.size
@@ -489,7 +407,7 @@ def _step_multiplier(correction, alpha: float, order: int, options: Options) -> 
     return 2.0 if f <= 0.5 else max(0.5, 1.0 / f)
 
 
-def _step_failure(run: _Run, point: Node, steps: int, reason: str, ds: float):
+def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
     """Status and message when the step falls below ``ds_min``."""
     where = (f"after step {steps} at s={point.s:.12g}, x={run.problem.describe(point.x)} "
              f"(step size {ds:.3g} < ds_min={run.options.ds_min:.3g})")
@@ -504,7 +422,7 @@ def _step_failure(run: _Run, point: Node, steps: int, reason: str, ds: float):
         "loosen Options.tol, or lower Options.ds_min")
 
 
-def _point_at_arclength(run: _Run, a: Node, b: Node, s: float) -> Node:
+def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:
     """The curve point at arclength ``s`` near the step ``a -> b`` (else ``b``).
 
     The step was sized in pseudo-arclength, whose sum differs from the
@@ -521,7 +439,7 @@ def _point_at_arclength(run: _Run, a: Node, b: Node, s: float) -> Node:
                     correction.iterations)
 
 
-def _closing_point(run: _Run, start: Node, a: Node, b: Node) -> Node | None:
+def _closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
     """The start point, if the step ``a -> b`` passes through it with the same tangent.
 
     The step must cross the hyperplane through the start normal to its tangent
@@ -555,192 +473,3 @@ def _closing_point(run: _Run, start: Node, a: Node, b: Node) -> Node | None:
     angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
     return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
                 start.residual, correction.iterations, start.events)
-
-
-class _Found(NamedTuple):
-    located: Located
-    kind: SpecialKind
-    name: str
-    coordinate: int | None
-    terminal: bool
-    event: int | None = None
-
-
-def _scan_step(run: _Run, a: Node, b: Node) -> list[_Found]:
-    """Bracket and locate the special points of step ``(a, b]``, in order along it.
-
-    Raises
-    ------
-    LocateError
-        If a special point was bracketed but could not be located (the step may
-        be too long for the Hermite arc to predict its inside); an
-        :class:`EventNotFinite` if an event is not finite inside the step.
-    """
-    options, evaluator = run.options, run.evaluator
-    describe = run.problem.describe
-    scan = StepScan(evaluator, options, run.events, a, b)
-    found: list[_Found] = []
-    what = "a special point"
-    try:
-        brackets = [(j, bracket) for j, event in enumerate(run.events)
-                    for bracket in scan.event_brackets(j, event.direction)]
-        end = None  # where the curve ends: the first terminal zero located so far
-        for j, (lo, hi, f_lo, f_hi) in sorted(brackets, key=lambda item: _locate_order(
-                run.events[item[0]], item[0], *item[1])):
-            event = run.events[j]
-            what = f"event '{event.name}'"
-            if end is not None and hi.s > end.s:
-                # the curve ends inside this bracket: only a zero before the end matters,
-                # and there is one exactly when the event has changed sign at the end
-                if lo.s >= end.s:
-                    continue
-                f_end = end.events[j]
-                if f_end != 0.0 and (f_end > 0.0) == (f_lo > 0.0):
-                    continue
-                hi, f_hi = end, f_end
-            located = locate_zero(evaluator, options,
-                                  lambda c, e=event: event_value(e, c.x, describe),
-                                  lo, hi, f_lo, f_hi, False)
-            found.append(_Found(located, SpecialKind.EVENT, event.name, None, event.terminal, j))
-            if event.terminal and (end is None or located.s < end.s):
-                end = _located_node(run, located)
-        # the order along the step, events at one point in the order of the run's events
-        found.sort(key=lambda item: (item.located.s, item.event))
-        # folds only up to the first terminal event, where the curve ends
-        for i in options.fold_coordinates:
-            name = f"fold {run.problem.coordinate_name(i)}"
-            what = f"'{name}'"
-            for lo, hi, f_lo, f_hi in scan.fold_brackets(i, BRANCH_TANGENT_NOISE, end):
-                located = locate_zero(evaluator, options, lambda c, i=i: c.tangent[i],
-                                      lo, hi, f_lo, f_hi, True)
-                found.append(_Found(located, SpecialKind.FOLD, name, i, False))
-        if options.detect_branch_points and crossed(a.det, b.det):
-            what = "a branch point"
-            # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
-            # the accepted ends, and smooth through the branch point where t is not
-            located = locate_zero(evaluator, options, lambda c: c.border_det, a, b, a.det,
-                                  b.det, True)
-            if located.node is None:
-                located = refine_branch_point(evaluator, options, located, a, b)
-            found.append(_Found(located, SpecialKind.BRANCH_POINT, "branch point", None, False))
-    except LocateError as error:
-        raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
-                          f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None
-    # In order along the step's chord, not of the root finder's parameter: each location
-    # refines its own Hermite arcs, whose parametrisations differ by O(h^4), so two special
-    # points closer than that (a fold next to an event, near a codimension-2 point) would be
-    # put in the wrong order; their projections on the chord are exact to the correction.
-    chord = b.x - a.x
-    found.sort(key=lambda item: float((_located_x(item.located) - a.x) @ chord))
-    return found
-
-
-def _located_x(located: Located) -> np.ndarray:
-    # a Located without a node carries its correction
-    return located.node.x if located.node is not None else cast(Correction, located.correction).x
-
-
-def _locate_order(event: Event, j: int, lo: Node, hi: Node, f_lo: float, f_hi: float):
-    """The order in which the step's event brackets are located: terminal events first,
-    those whose zero looks simple (end slopes that match the secant, ``rate`` near 1) before
-    those that look multiple (a triple zero has ``rate`` near 3), then by position.
-
-    Any order gives the same zeros before the curve's end; this one locates the zero where the
-    curve ends cheaply first, so that a bracket beyond it is dropped and one that contains
-    it is cut at it (a multiple zero costs Brent's method tens of bisections).
-    """
-    if not event.terminal:
-        return (1, 0.0, lo.s, j)
-    rate = math.inf
-    if lo.slopes is not None and hi.slopes is not None and f_hi != f_lo:
-        m_lo, m_hi = lo.slopes[j], hi.slopes[j]
-        if m_lo is not None and m_hi is not None:
-            rate = 0.5 * (hi.s - lo.s) * (abs(m_lo) + abs(m_hi)) / abs(f_hi - f_lo)
-    return (0, abs(math.log(rate)) if 0.0 < rate < math.inf else math.inf, lo.s, j)
-
-
-def _located_node(run: _Run, located: Located) -> Node:
-    """A located point as a node with its event values (a bracket's end, or a new node)."""
-    if located.node is not None:
-        return located.node
-    c = cast(Correction, located.correction)  # a Located without a node carries its correction
-    return Node(c.x, located.s, c.tangent, c.det, c.residual, c.iterations,
-                [event_value(e, c.x, run.problem.describe) for e in run.events])
-
-
-def _add_step(run: _Run, a: Node, b: Node, found: list[_Found]) -> SpecialPoint | None:
-    """Append the located special points of step ``(a, b]`` and ``b``.
-
-    Returns the terminal event that ends the curve, if any; the curve then ends
-    at that event point and the rest of the step is dropped.
-    """
-    first_terminal = next((item for item in found if item.terminal), None)
-    if first_terminal is not None:
-        found = found[:found.index(first_terminal) + 1]
-
-    a_index = len(run.s) - 1
-    b_index = None
-    terminal = None
-    previous_s = a.s
-    for item in found:
-        located = item.located
-        if located.node is a:
-            index = a_index
-        elif located.node is b:
-            if b_index is None:
-                b_index = _append_end(run, a_index, b)
-            index = b_index
-        elif located.s == previous_s and len(run.s) - 1 != a_index:
-            index = len(run.s) - 1
-        else:
-            c = cast(Correction, located.correction) if located.node is None else located.node
-            # the root finder's variable is the Hermite parameter; report arclength
-            angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
-            s = min(b.s, a.s + arc_length(c.x - a.x, angle))
-            index = run.append(c.x, max(s, run.s[-1]), c.tangent, c.residual, c.iterations)
-        previous_s = located.s
-        special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate,
-                           item.event)
-        if item is first_terminal:
-            terminal = special
-    if terminal is None and b_index is None:
-        _append_end(run, a_index, b)
-    return terminal
-
-
-def _fold_inconsistency(run: _Run) -> str:
-    """A message if the points turn in a fold coordinate more often than folds were reported.
-
-    The scan of every step is the primary detector; this check of the stored
-    points is the backstop: along the points, each fold coordinate ``x_i`` may
-    turn (its increments change sign, ignoring increments within ``100 tol`` of
-    zero) only at reported folds, so the number of turns cannot exceed the
-    number of folds (a fold at the curve's first or last point turns nothing).
-    Increments are used rather than tangents: next to a branch point a
-    computed tangent is noise, a corrected point is not.
-    """
-    x = np.array(run.x)
-    noise = 100.0 * run.options.tol
-    for i in run.options.fold_coordinates:
-        steps = np.diff(x[:, i]) if len(x) > 1 else np.zeros(0)
-        turns = _sign_changes([float(v) for v in steps if abs(v) > noise])
-        folds = sum(1 for p in run.special if p.kind is SpecialKind.FOLD and p.coordinate == i)
-        if turns > folds:
-            return (f"the points turn {turns} times in {run.problem.coordinate_name(i)} but "
-                    f"{folds} folds were located: a fold was missed; lower Options.ds_max")
-    return ""
-
-
-def _sign_changes(values: list[float]) -> int:
-    return sum(1 for p, q in zip(values, values[1:], strict=False) if (p > 0.0) != (q > 0.0))
-
-
-def _append_end(run: _Run, a_index: int, b: Node) -> int:
-    """Append the step's end; after inserted points, its arclength is re-measured
-    from the last of them, so that every increment is at least its chord (an
-    end placed exactly at ``max_arclength`` keeps that value)."""
-    if len(run.s) - 1 != a_index and b.s != run.options.max_arclength:
-        x, t = run.x[-1], run.tangents[-1]
-        angle = math.acos(max(-1.0, min(1.0, float(t @ b.tangent))))
-        b.s = run.s[-1] + arc_length(b.x - x, angle)
-    return run.append(b.x, b.s, b.tangent, b.residual, b.iterations)

@@ -156,7 +156,7 @@ def test_a_function_local_import_says_why():
 
 
 def test_no_module_is_over_600_lines():
-    for _name, path in GROOVE.items():
+    for _name, path in {**GROOVE, **CONTINUATION}.items():
         if path.name in SIZE_EXEMPT:
             continue
         n = len(path.read_text().splitlines())

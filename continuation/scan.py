@@ -1,0 +1,421 @@
+"""Bracketing the special points inside one accepted step, so that none can be missed.
+
+Every accepted step ``(a, b]`` is scanned for zeros of scalar functions along the
+curve: event functions ``g(x)``, tangent components ``t_i`` (folds) and
+``det [H'; t^T]`` (branch points). A sign test on the two ends alone misses two
+zeros inside one step (they cancel) and a zero at the start; the scan therefore
+models each function on the step from the data the step already has, and
+subdivides where the model allows zeros the end values do not show
+(:class:`StepScan`). Each bracket is then located by :mod:`continuation.locate`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from .corrector import correct
+from .errors import CallbackError
+from .events import Event, crossed
+from .linalg import max_abs, norm
+from .options import Options
+from .predictor import hermite
+from .problem import Evaluator
+
+__all__ = [
+    "EventNotFinite",
+    "LocateError",
+    "Node",
+    "StepScan",
+    "event_value",
+]
+
+#: a corrected trial point may move at most this fraction of its Hermite interval
+JUMP = 0.1
+
+#: relative step of the central difference of an event along the tangent
+SLOPE_STEP = 1e-6
+
+#: a model extremum this close to zero, relative to the end values, is checked by a node
+APPROACH = 0.5
+
+#: a split point is kept this far (as a fraction) from the ends of its interval
+SPLIT_MARGIN = 0.01
+
+#: an event is clear of zero on a step when its cubic model provably stays above this
+#: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
+CLEAR = APPROACH + 0.1 * (1.0 - APPROACH)
+
+#: most nodes a step may need before its scan is declared unresolvable
+MAX_NODES = 200
+
+#: a tiny value standing for "zero, on this side"
+_TINY = 1e-300
+
+#: a tangent component at most this large at a terminal point is a zero there
+TERMINAL_NOISE = 1e-10
+
+#: relative step of the central difference of the Jacobian along the tangent (curvature)
+CURVATURE_STEP = 1e-5
+
+
+class LocateError(RuntimeError):
+    """A special point was bracketed but could not be located (or a scan not resolved)."""
+
+
+class EventNotFinite(LocateError):
+    """An event function (or its derivative along the curve) is not finite at a point."""
+
+
+class Node:
+    """A point of the curve with its tangent and the values the scan needs.
+
+    Attributes
+    ----------
+    x, tangent : ndarray, shape (n + 1,)
+    s : float
+        Arclength parameter of the point (for nodes inside a step, that of the
+        step's cubic Hermite arc).
+    det : float
+        ``det [H'(x); t^T]``.
+    residual : float
+        ``max |H(x)|``.
+    iterations : int
+        Newton steps that produced the point.
+    events : list of float
+        Event values ``g_j(x)``.
+    slopes : list of float or None
+        ``d g_j / ds`` along the curve, filled when first needed.
+    """
+
+    __slots__ = ("det", "events", "iterations", "residual", "s", "slopes", "tangent", "x")
+
+    def __init__(self, x, s, tangent, det, residual, iterations, events):
+        self.x = x
+        self.s = s
+        self.tangent = tangent
+        self.det = det
+        self.residual = residual
+        self.iterations = iterations
+        self.events = events
+        self.slopes = None
+
+
+def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], str]) -> float:
+    """``event.function(x)`` as a float; a raised exception becomes a :class:`CallbackError`."""
+    try:
+        return float(event.function(x))
+    except Exception as exc:
+        raise CallbackError(f"event '{event.name}' raised {type(exc).__name__}: {exc} at "
+                            f"x={describe(x)}") from exc
+
+
+def _event_slope(event: Event, node: Node, describe) -> float:
+    """``d g / ds = grad g . t`` at a node: from ``event.gradient`` or a central difference."""
+    x, t = node.x, node.tangent
+    if event.gradient is not None:
+        try:
+            gradient = np.asarray(event.gradient(x), dtype=float)
+        except Exception as exc:
+            raise CallbackError(f"gradient of event '{event.name}' raised "
+                                f"{type(exc).__name__}: {exc} at x={describe(x)}") from exc
+        if gradient.shape != x.shape:
+            raise CallbackError(f"gradient of event '{event.name}' returned shape "
+                                f"{gradient.shape}, expected {x.shape}")
+        return float(gradient @ t)
+    step = SLOPE_STEP * (1.0 + max_abs(x))
+    forward, backward = x + step * t, x - step * t
+    width = float((forward - backward) @ t)
+    return (event_value(event, forward, describe) - event_value(event, backward, describe)) / width
+
+
+def _cubic(f0: float, m0: float, f1: float, m1: float) -> tuple[float, float, float, float]:
+    """Power coefficients on ``u in [0, 1]`` of the cubic with ``P(0), P'(0), P(1), P'(1)``."""
+    return (f0, m0, 3.0 * (f1 - f0) - 2.0 * m0 - m1, 2.0 * (f0 - f1) + m0 + m1)
+
+
+def _value(c, u: float) -> float:
+    return c[0] + u * (c[1] + u * (c[2] + u * c[3]))
+
+
+def _derivative(c, u: float) -> float:
+    return c[1] + u * (2.0 * c[2] + 3.0 * u * c[3])
+
+
+def _critical_points(c) -> list[float]:
+    """Zeros of ``P'(u) = c1 + 2 c2 u + 3 c3 u^2`` in ``(0, 1)``, in order."""
+    qa, qb, qc = 3.0 * c[3], 2.0 * c[2], c[1]
+    scale = abs(qb) + abs(qc)
+    if abs(qa) <= 1e-14 * scale or qa == 0.0:
+        roots = [-qc / qb] if qb != 0.0 else []
+    else:
+        disc = qb * qb - 4.0 * qa * qc
+        if disc < 0.0:
+            return []
+        q = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))
+        roots = [q / qa] + ([qc / q] if q != 0.0 else [])
+    return sorted(u for u in roots if 0.0 < u < 1.0)
+
+
+def _sign_changes(values: Sequence[float]) -> int:
+    signs = [v > 0.0 for v in values if v != 0.0]
+    return sum(1 for p, q in zip(signs, signs[1:], strict=False) if p != q)
+
+
+def _split_point(c, f_lo: float, f_hi: float) -> float | None:
+    """Where to look inside an interval whose model may hide zeros, else ``None``.
+
+    The model ``P`` (with ``P(0) = f_lo``, ``P(1) = f_hi``, both nonzero) may hide
+    zeros that the ends do not show when it changes sign more often than the ends
+    do, or when it has an interior extremum that comes within ``APPROACH`` of zero
+    relative to the smaller end value (the function turns towards zero and back).
+    The split point is that extremum.
+    """
+    critical = _critical_points(c)
+    if not critical:
+        return None
+    values = [_value(c, u) for u in critical]
+    ends = 1 if (f_lo > 0.0) != (f_hi > 0.0) else 0
+    nearest = min(range(len(critical)), key=lambda i: abs(values[i]))
+    if _sign_changes([f_lo, *values, f_hi]) > ends \
+            or abs(values[nearest]) < APPROACH * min(abs(f_lo), abs(f_hi)):
+        return min(1.0 - SPLIT_MARGIN, max(SPLIT_MARGIN, critical[nearest]))
+    return None
+
+
+class StepScan:
+    """The special points of one accepted step ``(a, b]``: brackets of zeros.
+
+    Parameters
+    ----------
+    evaluator : Evaluator
+        Counting evaluator of the problem.
+    options : Options
+        Tolerances.
+    events : sequence of Event
+        The run's events (their values are ``Node.events``).
+    a, b : Node
+        The step's accepted ends.
+
+    Notes
+    -----
+    For each scalar function ``f`` along the step, a model ``P(u)``,
+    ``u = (s - s_a) / (s_b - s_a)``, is built from the data of the interval's
+    ends: for an event ``g``, the cubic Hermite interpolant of ``g`` and
+    ``dg/ds = grad g . t``; for a fold of coordinate ``i``, the derivative of the
+    cubic Hermite arc of ``x_i`` (the arc the predictor and the locator use),
+    a quadratic through ``t_i`` at both ends that also feels the chord
+    ``x_i(b) - x_i(a)``. Where the model allows zeros the end values do not show
+    (:func:`_split_point`), a node is corrected onto the curve at the model's
+    extremum and both halves are scanned again with their own, more accurate,
+    models, until every interval has a model that either keeps its sign or
+    changes it once. A zero at an interval's start is taken on the side the
+    function moves to (the sign of ``P'(0)``), so a zero at the start of a curve
+    is not a crossing while a second zero in the first step is. This is the
+    bracketing strategy of event location in ODE solvers with dense output
+    (Shampine & Thompson, "Event location for ordinary differential equations",
+    Comput. Math. Appl. 39 (2000) 43-54), with the curve's Hermite arc as the
+    dense output.
+    """
+
+    def __init__(self, evaluator: Evaluator, options: Options, events: Sequence[Event],
+                 a: Node, b: Node) -> None:
+        self.evaluator = evaluator
+        self.options = options
+        self.events = events
+        self.nodes = [a, b]
+        self.describe = evaluator.problem.describe
+
+    # --- nodes --------------------------------------------------------------------------
+    def node_at(self, s: float) -> Node:
+        """The curve point at Hermite parameter ``s`` inside the step, corrected, with tangent."""
+        nodes = self.nodes
+        if len(nodes) >= MAX_NODES:
+            raise LocateError(f"more than {MAX_NODES} nodes needed to resolve the step between "
+                              f"s={nodes[0].s!r} and s={nodes[-1].s!r}")
+        k = next(k for k in range(1, len(nodes)) if nodes[k].s >= s)
+        lo, hi = nodes[k - 1], nodes[k]
+        width = hi.s - lo.s
+        point, derivative = hermite(lo.x, lo.tangent, hi.x, hi.tangent, width, s - lo.s)
+        border = derivative / norm(derivative)
+        options = self.options
+        result = correct(self.evaluator, point, border, options.locate_newton,
+                         max_correction=JUMP * width, accept_fallback=True)
+        if not result.ok or result.tangent is None:
+            raise LocateError(f"point at s={s!r} inside the step not corrected: {result.reason}")
+        if norm(result.x - point) > JUMP * width:
+            raise LocateError(f"point at s={s!r} moved {norm(result.x - point)!r} from its "
+                              "prediction: it may have jumped to another branch")
+        values = [event_value(event, result.x, self.describe) for event in self.events]
+        if not all(math.isfinite(v) for v in values):
+            j = next(j for j, v in enumerate(values) if not math.isfinite(v))
+            raise EventNotFinite(f"event '{self.events[j].name}' is {values[j]!r} at "
+                                 f"x={self.describe(result.x)}")
+        node = Node(result.x, s, result.tangent, result.det, result.residual, result.iterations,
+                    values)
+        nodes.insert(k, node)
+        return node
+
+    def slope(self, node: Node, j: int) -> float:
+        """``d g_j / ds`` at a node (computed once)."""
+        if node.slopes is None:
+            node.slopes = [None] * len(self.events)
+        value = node.slopes[j]
+        if value is None:
+            value = _event_slope(self.events[j], node, self.describe)
+            if not math.isfinite(value):
+                raise EventNotFinite(
+                    f"the derivative of event '{self.events[j].name}' along the curve is "
+                    f"{value!r} at x={self.describe(node.x)}: the event is not defined just off "
+                    "the curve; give Event.gradient")
+            node.slopes[j] = value
+        return value
+
+    # --- brackets -----------------------------------------------------------------------
+    def event_brackets(self, j: int, direction: int = 0) -> list[tuple[Node, Node, float, float]]:
+        """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step."""
+
+        if len(self.nodes) == 2 and self._clear(j):
+            return []
+
+        def model(lo: Node, hi: Node):
+            width = hi.s - lo.s
+            return _cubic(lo.events[j], width * self.slope(lo, j),
+                          hi.events[j], width * self.slope(hi, j))
+
+        return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes))
+
+    def _clear(self, j: int) -> bool:
+        """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero.
+
+        The cubic Hermite model is ``P = f_a h00 + f_b h01 + m_a h10 + m_b h11`` with
+        ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on ``[0, 1]``, so
+        for end values of one sign ``|P| >= min(|f_a|, |f_b|) - (4/27)(|m_a| + |m_b|)``. When
+        that stays above ``CLEAR`` times the smaller end value, the full scan would find no
+        sign change and no extremum within ``APPROACH`` of zero: it brackets nothing, and this
+        test says so without building the model (the common case on most steps).
+        """
+        a, b = self.nodes
+        f_a, f_b = a.events[j], b.events[j]
+        if not ((f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)):
+            return False
+        smaller = min(abs(f_a), abs(f_b))
+        width = b.s - a.s
+        return (4.0 / 27.0) * width * (abs(self.slope(a, j)) + abs(self.slope(b, j))) \
+            <= (1.0 - CLEAR) * smaller
+
+    def add(self, node: Node) -> None:
+        """Insert a located curve point (e.g. a terminal event) as a node of the step."""
+        if all(n.s != node.s for n in self.nodes):
+            self.nodes.append(node)
+            self.nodes.sort(key=lambda n: n.s)
+
+    def curvature(self, node: Node) -> np.ndarray:
+        """The curvature vector ``dt/ds`` at a node.
+
+        ``[H'; t^T] kappa = [-H''[t, t]; 0]``, from differentiating ``H'(x(s)) t(s) = 0``;
+        ``H''[t, t]`` is the central difference ``(H'(x + e t) - H'(x - e t)) t / (2 e)``
+        (three Jacobians).
+        """
+        x, t = node.x, node.tangent
+        step = CURVATURE_STEP * (1.0 + max_abs(x))
+        second = (self.evaluator.jacobian(x + step * t)
+                  - self.evaluator.jacobian(x - step * t)) @ t / (2.0 * step)
+        bordered = np.vstack([self.evaluator.jacobian(x), t])
+        try:
+            return np.linalg.solve(bordered, np.append(-second, 0.0))
+        except np.linalg.LinAlgError:
+            raise LocateError(f"no curvature at the singular point "
+                              f"x={self.describe(x)}") from None
+
+    def fold_brackets(self, i: int, noise: float = 0.0,
+                      end: Node | None = None) -> list[tuple[Node, Node, float, float]]:
+        """Brackets ``(lo, hi, t_lo, t_hi)`` of the zeros of the tangent component ``t_i``.
+
+        ``noise``: at a node with ``det == 0`` (a singular start whose tangent was
+        given, e.g. a branch tangent) a component at most this large is taken as zero.
+        ``end``: a node where the curve ends (a terminal event); only zeros before it
+        are bracketed. If ``t_i`` vanishes there (within ``TERMINAL_NOISE``), as where a
+        curve ends at a point that is stationary in ``x_i``, its sign just before the
+        end is taken from the exact curvature: ``-sign(dt_i/ds)``. So a fold next to
+        such an end is found however close it is, while the end itself is no fold.
+        """
+        before_end = 0.0
+        if end is not None:
+            self.add(end)
+            if abs(float(end.tangent[i])) <= TERMINAL_NOISE:
+                kappa = float(self.curvature(end)[i])
+                before_end = -math.copysign(_TINY, kappa) if kappa != 0.0 else 0.0
+
+        def value(node: Node) -> float:
+            if node is end and before_end != 0.0:
+                return before_end
+            t_i = float(node.tangent[i])
+            return 0.0 if node.det == 0.0 and abs(t_i) <= noise else t_i
+
+        def model(lo: Node, hi: Node):
+            width = hi.s - lo.s
+            chord = (hi.x[i] - lo.x[i]) / width
+            t_lo, t_hi = value(lo), value(hi)
+            # t_i on the derivative of the cubic Hermite arc of x_i, a quadratic
+            return (t_lo, 6.0 * chord - 4.0 * t_lo - 2.0 * t_hi,
+                    -6.0 * chord + 3.0 * t_lo + 3.0 * t_hi, 0.0)
+
+        if end is None and len(self.nodes) == 2 and self._fold_clear(i):
+            return []
+        nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
+        return self._brackets(value, model, 0, nodes)
+
+    def _fold_clear(self, i: int) -> bool:
+        """Whether ``t_i``'s model on the whole step provably neither crosses nor nears zero.
+
+        The model is the derivative of the cubic Hermite arc of ``x_i``,
+        ``P(u) = (1 - u) t_a + u t_b + c_2 (u^2 - u)`` with ``|u^2 - u| <= 1/4`` on ``[0, 1]``,
+        so for end values of one sign ``|P| >= min(|t_a|, |t_b|) - |c_2| / 4``; as for
+        events (:meth:`_clear`), the full scan would bracket nothing when that stays above
+        ``CLEAR`` times the smaller end value. Not at a singular start (``det = 0``).
+        """
+        a, b = self.nodes
+        if a.det == 0.0 or b.det == 0.0:
+            return False
+        t_a, t_b = float(a.tangent[i]), float(b.tangent[i])
+        if not ((t_a > 0.0 and t_b > 0.0) or (t_a < 0.0 and t_b < 0.0)):
+            return False
+        chord = (b.x[i] - a.x[i]) / (b.s - a.s)
+        c_2 = -6.0 * chord + 3.0 * t_a + 3.0 * t_b
+        return 0.25 * abs(c_2) <= (1.0 - CLEAR) * min(abs(t_a), abs(t_b))
+
+    def _brackets(self, value, model, direction: int, nodes=None):
+        nodes = self.nodes if nodes is None else nodes
+        out = []
+        # every interval between the nodes found so far (earlier scans of the step left some)
+        stack = list(zip(nodes, nodes[1:], strict=False))[::-1]
+        while stack:
+            lo, hi = stack.pop()
+            c = model(lo, hi)
+            f_lo, f_hi = value(lo), value(hi)
+            if f_lo == 0.0:
+                # a zero at the interval's start belongs to the interval before (or is
+                # the curve's start): the function is on the side it moves to
+                slope = c[1] if c[1] != 0.0 else c[2]
+                f_lo = math.copysign(_TINY, slope) if slope != 0.0 else f_hi
+            if f_hi == 0.0:
+                # a zero at the end is a crossing of this interval if the function
+                # moves on to the other side
+                slope = _derivative(c, 1.0)
+                f_hi = math.copysign(_TINY, slope) if slope != 0.0 else -f_lo
+            if f_lo == 0.0 or f_hi == 0.0:
+                continue  # identically zero on the interval's ends and model: no crossing
+            split = None
+            if hi.s - lo.s > 2.0 * self.options.event_tol:
+                split = _split_point(c, f_lo, f_hi)
+            if split is not None:
+                middle = self.node_at(lo.s + split * (hi.s - lo.s))
+                stack.append((middle, hi))
+                stack.append((lo, middle))
+            elif crossed(f_lo, f_hi, direction):
+                out.append((lo, hi, f_lo, value(hi)))
+        out.sort(key=lambda item: item[0].s)
+        return out

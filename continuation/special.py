@@ -1,0 +1,217 @@
+"""The special points of one accepted step: bracketed, located, and added to the curve in order.
+
+:func:`scan_step` brackets every zero of the events, of the fold coordinates' tangent
+components and of the branch-point determinant inside the step (:mod:`continuation.scan`) and
+locates each (:mod:`continuation.locate`), terminal events first; :func:`add_step` appends
+the step's points and its special points to the run in their order along the curve;
+:func:`fold_inconsistency` checks that the points never turn where no fold was reported.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple, cast
+
+import numpy as np
+
+from .corrector import Correction
+from .events import Event, crossed
+from .locate import Located, locate_zero, refine_branch_point
+from .predictor import arc_length
+from .result import SpecialKind, SpecialPoint
+from .run import Run
+from .scan import LocateError, Node, StepScan, event_value
+
+__all__ = ["Found", "add_step", "append_end", "fold_inconsistency", "scan_step"]
+
+#: components of a singular start's tangent at most this large are taken as zero
+BRANCH_TANGENT_NOISE = 1e-7
+
+
+class Found(NamedTuple):
+    located: Located
+    kind: SpecialKind
+    name: str
+    coordinate: int | None
+    terminal: bool
+    event: int | None = None
+
+
+def scan_step(run: Run, a: Node, b: Node) -> list[Found]:
+    """Bracket and locate the special points of step ``(a, b]``, in order along it.
+
+    Raises
+    ------
+    LocateError
+        If a special point was bracketed but could not be located (the step may
+        be too long for the Hermite arc to predict its inside); an
+        :class:`EventNotFinite` if an event is not finite inside the step.
+    """
+    options, evaluator = run.options, run.evaluator
+    describe = run.problem.describe
+    scan = StepScan(evaluator, options, run.events, a, b)
+    found: list[Found] = []
+    what = "a special point"
+    try:
+        brackets = [(j, bracket) for j, event in enumerate(run.events)
+                    for bracket in scan.event_brackets(j, event.direction)]
+        end = None  # where the curve ends: the first terminal zero located so far
+        for j, (lo, hi, f_lo, f_hi) in sorted(brackets, key=lambda item: _locate_order(
+                run.events[item[0]], item[0], *item[1])):
+            event = run.events[j]
+            what = f"event '{event.name}'"
+            if end is not None and hi.s > end.s:
+                # the curve ends inside this bracket: only a zero before the end matters,
+                # and there is one exactly when the event has changed sign at the end
+                if lo.s >= end.s:
+                    continue
+                f_end = end.events[j]
+                if f_end != 0.0 and (f_end > 0.0) == (f_lo > 0.0):
+                    continue
+                hi, f_hi = end, f_end
+            located = locate_zero(evaluator, options,
+                                  lambda c, e=event: event_value(e, c.x, describe),
+                                  lo, hi, f_lo, f_hi, False)
+            found.append(Found(located, SpecialKind.EVENT, event.name, None, event.terminal, j))
+            if event.terminal and (end is None or located.s < end.s):
+                end = _located_node(run, located)
+        # the order along the step, events at one point in the order of the run's events
+        found.sort(key=lambda item: (item.located.s, item.event))
+        # folds only up to the first terminal event, where the curve ends
+        for i in options.fold_coordinates:
+            name = f"fold {run.problem.coordinate_name(i)}"
+            what = f"'{name}'"
+            for lo, hi, f_lo, f_hi in scan.fold_brackets(i, BRANCH_TANGENT_NOISE, end):
+                located = locate_zero(evaluator, options, lambda c, i=i: c.tangent[i],
+                                      lo, hi, f_lo, f_hi, True)
+                found.append(Found(located, SpecialKind.FOLD, name, i, False))
+        if options.detect_branch_points and crossed(a.det, b.det):
+            what = "a branch point"
+            # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
+            # the accepted ends, and smooth through the branch point where t is not
+            located = locate_zero(evaluator, options, lambda c: c.border_det, a, b, a.det,
+                                  b.det, True)
+            if located.node is None:
+                located = refine_branch_point(evaluator, options, located, a, b)
+            found.append(Found(located, SpecialKind.BRANCH_POINT, "branch point", None, False))
+    except LocateError as error:
+        raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
+                          f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None
+    # In order along the step's chord, not of the root finder's parameter: each location
+    # refines its own Hermite arcs, whose parametrisations differ by O(h^4), so two special
+    # points closer than that (a fold next to an event, near a codimension-2 point) would be
+    # put in the wrong order; their projections on the chord are exact to the correction.
+    chord = b.x - a.x
+    found.sort(key=lambda item: float((_located_x(item.located) - a.x) @ chord))
+    return found
+
+
+def _located_x(located: Located) -> np.ndarray:
+    # a Located without a node carries its correction
+    return located.node.x if located.node is not None else cast(Correction, located.correction).x
+
+
+def _locate_order(event: Event, j: int, lo: Node, hi: Node, f_lo: float, f_hi: float):
+    """The order in which the step's event brackets are located: terminal events first,
+    those whose zero looks simple (end slopes that match the secant, ``rate`` near 1) before
+    those that look multiple (a triple zero has ``rate`` near 3), then by position.
+
+    Any order gives the same zeros before the curve's end; this one locates the zero where the
+    curve ends cheaply first, so that a bracket beyond it is dropped and one that contains
+    it is cut at it (a multiple zero costs Brent's method tens of bisections).
+    """
+    if not event.terminal:
+        return (1, 0.0, lo.s, j)
+    rate = math.inf
+    if lo.slopes is not None and hi.slopes is not None and f_hi != f_lo:
+        m_lo, m_hi = lo.slopes[j], hi.slopes[j]
+        if m_lo is not None and m_hi is not None:
+            rate = 0.5 * (hi.s - lo.s) * (abs(m_lo) + abs(m_hi)) / abs(f_hi - f_lo)
+    return (0, abs(math.log(rate)) if 0.0 < rate < math.inf else math.inf, lo.s, j)
+
+
+def _located_node(run: Run, located: Located) -> Node:
+    """A located point as a node with its event values (a bracket's end, or a new node)."""
+    if located.node is not None:
+        return located.node
+    c = cast(Correction, located.correction)  # a Located without a node carries its correction
+    return Node(c.x, located.s, c.tangent, c.det, c.residual, c.iterations,
+                [event_value(e, c.x, run.problem.describe) for e in run.events])
+
+
+def add_step(run: Run, a: Node, b: Node, found: list[Found]) -> SpecialPoint | None:
+    """Append the located special points of step ``(a, b]`` and ``b``.
+
+    Returns the terminal event that ends the curve, if any; the curve then ends
+    at that event point and the rest of the step is dropped.
+    """
+    first_terminal = next((item for item in found if item.terminal), None)
+    if first_terminal is not None:
+        found = found[:found.index(first_terminal) + 1]
+
+    a_index = len(run.s) - 1
+    b_index = None
+    terminal = None
+    previous_s = a.s
+    for item in found:
+        located = item.located
+        if located.node is a:
+            index = a_index
+        elif located.node is b:
+            if b_index is None:
+                b_index = append_end(run, a_index, b)
+            index = b_index
+        elif located.s == previous_s and len(run.s) - 1 != a_index:
+            index = len(run.s) - 1
+        else:
+            c = cast(Correction, located.correction) if located.node is None else located.node
+            # the root finder's variable is the Hermite parameter; report arclength
+            angle = math.acos(max(-1.0, min(1.0, float(c.tangent @ a.tangent))))
+            s = min(b.s, a.s + arc_length(c.x - a.x, angle))
+            index = run.append(c.x, max(s, run.s[-1]), c.tangent, c.residual, c.iterations)
+        previous_s = located.s
+        special = run.mark(item.kind, item.name, index, located.accuracy, item.coordinate,
+                           item.event)
+        if item is first_terminal:
+            terminal = special
+    if terminal is None and b_index is None:
+        append_end(run, a_index, b)
+    return terminal
+
+
+def fold_inconsistency(run: Run) -> str:
+    """A message if the points turn in a fold coordinate more often than folds were reported.
+
+    The scan of every step is the primary detector; this check of the stored
+    points is the backstop: along the points, each fold coordinate ``x_i`` may
+    turn (its increments change sign, ignoring increments within ``100 tol`` of
+    zero) only at reported folds, so the number of turns cannot exceed the
+    number of folds (a fold at the curve's first or last point turns nothing).
+    Increments are used rather than tangents: next to a branch point a
+    computed tangent is noise, a corrected point is not.
+    """
+    x = np.array(run.x)
+    noise = 100.0 * run.options.tol
+    for i in run.options.fold_coordinates:
+        steps = np.diff(x[:, i]) if len(x) > 1 else np.zeros(0)
+        turns = _sign_changes([float(v) for v in steps if abs(v) > noise])
+        folds = sum(1 for p in run.special if p.kind is SpecialKind.FOLD and p.coordinate == i)
+        if turns > folds:
+            return (f"the points turn {turns} times in {run.problem.coordinate_name(i)} but "
+                    f"{folds} folds were located: a fold was missed; lower Options.ds_max")
+    return ""
+
+
+def _sign_changes(values: list[float]) -> int:
+    return sum(1 for p, q in zip(values, values[1:], strict=False) if (p > 0.0) != (q > 0.0))
+
+
+def append_end(run: Run, a_index: int, b: Node) -> int:
+    """Append the step's end; after inserted points, its arclength is re-measured
+    from the last of them, so that every increment is at least its chord (an
+    end placed exactly at ``max_arclength`` keeps that value)."""
+    if len(run.s) - 1 != a_index and b.s != run.options.max_arclength:
+        x, t = run.x[-1], run.tangents[-1]
+        angle = math.acos(max(-1.0, min(1.0, float(t @ b.tangent))))
+        b.s = run.s[-1] + arc_length(b.x - x, angle)
+    return run.append(b.x, b.s, b.tangent, b.residual, b.iterations)
