@@ -100,16 +100,21 @@ def friction(text: str) -> float:
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+def _argument(check, value: float) -> float:
+    """``check(value)``, its ``ValueError`` turned into argparse's error (same message)."""
+    try:
+        return check(value)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def traced_friction(text: str) -> float:
     """Argument type of a ``k`` whose boundaries are traced: ``1e-4 <= k <= 1e6``."""
     value = friction(text)
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_friction
 
-    try:
-        return check_traced_friction(value)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+    return _argument(check_traced_friction, value)
 
 
 def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "",
@@ -242,10 +247,7 @@ def _traced_ratio(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_ratio
 
-    try:
-        return check_traced_ratio(value)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+    return _argument(check_traced_ratio, value)
 
 
 def traced_poisson(text: str) -> float:
@@ -254,10 +256,7 @@ def traced_poisson(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_poisson
 
-    try:
-        return check_traced_poisson(value)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+    return _argument(check_traced_poisson, value)
 
 
 def add_compliance_options(parser, poisson_help: str = "", traced: bool = True) -> None:

@@ -94,24 +94,25 @@ TRACED_COMPLIANCE_RANGE = (2.0 / 3.0, 1.0)
 _RANGE_SLACK = 1e-12
 
 
+def _in_traced_range(name: str, value: float, bounds: tuple, allowed: str) -> float:
+    """``value`` if within ``bounds`` (with :data:`_RANGE_SLACK`), else ``ValueError``."""
+    low, high = bounds
+    if not low * (1.0 - _RANGE_SLACK) <= value <= high * (1.0 + _RANGE_SLACK):
+        raise ValueError(f"{name} = {value!r} is outside the range the boundaries are traced "
+                         f"for: {allowed}")
+    return value
+
+
 def check_traced_friction(k: float) -> float:
     """``k`` if inside :data:`TRACED_K_RANGE`, else ``ValueError`` naming it and the range."""
-    k_lo, k_hi = TRACED_K_RANGE
-    if not k_lo * (1.0 - _RANGE_SLACK) <= k <= k_hi * (1.0 + _RANGE_SLACK):
-        raise ValueError(f"friction coefficient k = {k!r} is outside the range the boundaries "
-                         "are traced for: 1e-4 <= k <= 1e6 (the point solver, groove solve, "
-                         "takes any k > 0)")
-    return k
+    return _in_traced_range("friction coefficient k", k, TRACED_K_RANGE,
+                            "1e-4 <= k <= 1e6 (the point solver, groove solve, takes any k > 0)")
 
 
 def check_traced_ratio(c: float) -> float:
     """``c`` if inside :data:`TRACED_COMPLIANCE_RANGE`, else ``ValueError``."""
-    c_lo, c_hi = TRACED_COMPLIANCE_RANGE
-    if not c_lo * (1.0 - _RANGE_SLACK) <= c <= c_hi * (1.0 + _RANGE_SLACK):
-        raise ValueError(f"compliance ratio c = {c!r} is outside the range the boundaries are "
-                         "traced for: 2/3 <= c <= 1 (Mindlin's ratio for Poisson ratios "
-                         "0 <= nu <= 1/2)")
-    return c
+    return _in_traced_range("compliance ratio c", c, TRACED_COMPLIANCE_RANGE,
+                            "2/3 <= c <= 1 (Mindlin's ratio for Poisson ratios 0 <= nu <= 1/2)")
 
 
 def check_traced_poisson(nu: float) -> float:
