@@ -223,3 +223,10 @@ def test_the_atlas_refuses_what_is_not_traced(call, message):
     # c = 0.3 were traced unchecked (with a "cusp" for c = 0.3)
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_an_atlas_in_nu_stays_inside_its_range():
+    # rows at nu = -2.1e-13 (c = 1.000000000000105) were written, just outside 0 <= nu <= 1/2
+    atlas = trace_atlas_in_poisson(10.0)
+    for curve in atlas.curves.values():
+        assert curve.values.min() >= 0.0 and curve.values.max() <= 0.5, curve.name

@@ -294,3 +294,15 @@ def test_the_compliance_travels_with_the_csv_and_tells_two_traces_apart(tmp_path
     old = pd.read_csv(tmp_path / "boundaries_k1.csv").drop(columns="compliance")
     old.to_csv(tmp_path / "old.csv", index=False)
     assert read_boundaries_csv(tmp_path / "old.csv")["compliance"].eq(1.0).all()
+
+
+def test_a_boundary_curve_table_has_the_compliance_of_its_trace():
+    # BoundaryCurve.to_frame() wrote c = 1 and recomputed T/N for a trace with c = 2/3
+    from groove_model.model.parameters import Compliance, Parameters
+
+    boundaries = trace_boundaries(Parameters(1.0, Compliance.from_poisson(0.5)))
+    mine = boundaries.curves["dr_limit"].to_frame()
+    theirs = boundaries.to_frame().query("boundary == 'dr_limit'").reset_index(drop=True)
+    assert mine["compliance"].eq(2.0 / 3.0).all()
+    assert np.allclose(mine["T_over_N_L"], 1.0, rtol=1e-9)  # T = kN on the limit, k = 1
+    pd.testing.assert_frame_equal(mine, theirs)

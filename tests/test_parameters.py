@@ -70,3 +70,12 @@ def test_parameters_are_immutable_and_compliance_validated():
         p.k = 3.0
     with pytest.raises(ValueError, match=r"compliance ratio = -1.0 is outside the allowed range"):
         Compliance(-1.0)
+
+
+@pytest.mark.parametrize("angle", ["0.6", True, None])
+def test_angles_must_be_numbers(angle):
+    # "0.6" was read as 0.6 and None reported as "gamma = nan", while k = "1" was refused
+    from groove_model.model.equilibrium import solve_equilibrium
+
+    with pytest.raises(TypeError, match="gamma must be a real number"):
+        solve_equilibrium(angle, 0.2, 1.0)

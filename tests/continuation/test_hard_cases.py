@@ -198,3 +198,12 @@ def test_a_huge_tangent_component_gives_no_zero_tangent():
                   options=Options(max_steps=3))
     assert np.all(np.isfinite(curve.tangents))
     assert np.allclose(np.linalg.norm(curve.tangents, axis=1), 1.0)
+
+
+def test_a_wrong_length_start_is_suggested_as_the_cause():
+    # a circle started from (1, 0, 0): the message blamed only the residual's shape
+    circle = Problem(lambda x: np.array([x[0] ** 2 + x[1] ** 2 - 1.0]),
+                     lambda x: np.array([[2.0 * x[0], 2.0 * x[1]]]))
+    with pytest.raises(CallbackShapeError, match="or x0 has the wrong length: 1 equations "
+                                                 "need 2 unknowns"):
+        trace(circle, [1.0, 0.0, 0.0])
