@@ -313,7 +313,7 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
         failures.append(f"{t.name} at {axis.name} = {t.value:.12g} is {_corner_distance(t.x):.1e} "
                         "from the singular corner (pi/4, pi/4), closer than events are resolved "
                         f"there ({CORNER_RESOLUTION:g}): no threshold can be trusted")
-    thresholds = [t for t in thresholds if t not in unresolved]
+    thresholds = [t for t in thresholds if _corner_distance(t.x) > CORNER_RESOLUTION]
     return Atlas(axis=axis, range=(float(value_range[0]), float(value_range[1])), curves=curves,
                  thresholds=tuple(thresholds), failures=tuple(failures),
                  seconds=time.perf_counter() - began)
