@@ -44,7 +44,9 @@ __all__ = [
     "one_friction",
     "output_directory",
     "poisson",
+    "positive_integer",
     "real",
+    "require_certify_extra",
     "traced_friction",
     "traced_poisson",
 ]
@@ -83,21 +85,12 @@ def add_command(subparsers, name: str, help: str, description: str,
     return parser
 
 
-def friction(text: str) -> float:
-    """Argument type of a friction coefficient ``k``: a finite number > 0."""
+def _number(text: str, message: str) -> float:
+    """``float(text)``, or argparse's error with ``message`` if it is not a number."""
     try:
-        value = float(text)
+        return float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"friction coefficient k = {text!r} is not a number; k must be finite and > 0"
-        ) from None
-    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
-    from ..model.parameters import check_friction
-
-    try:
-        return check_friction(value)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+        raise argparse.ArgumentTypeError(message) from None
 
 
 def _argument(check, value: float) -> float:
@@ -106,6 +99,44 @@ def _argument(check, value: float) -> float:
         return check(value)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def positive_integer(name: str):
+    """Argument type of an integer >= 1; messages name it ``name``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            value = 0
+        if value < 1:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r} is outside the allowed range: "
+                                             "an integer >= 1")
+        return value
+
+    parse.__name__ = name
+    return parse
+
+
+def require_certify_extra() -> None:
+    """:class:`UsageError` naming the extra to install if python-flint is missing (before
+    anything is computed)."""
+    # Imported here: only --certify needs to know whether python-flint is installed.
+    from continuation.numbers import require_flint
+
+    try:
+        require_flint()
+    except ImportError as exc:
+        raise UsageError(str(exc)) from None
+
+
+def friction(text: str) -> float:
+    """Argument type of a friction coefficient ``k``: a finite number > 0."""
+    value = _number(text, f"friction coefficient k = {text!r} is not a number; k must be "
+                          "finite and > 0")
+    # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
+    from ..model.parameters import check_friction
+
+    return _argument(check_friction, value)
 
 
 def traced_friction(text: str) -> float:
@@ -216,16 +247,9 @@ def poisson(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import POISSON_RANGE, check_poisson
 
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"Poisson ratio nu = {text!r} is not a number; allowed range "
-            f"{POISSON_RANGE[0]:g} < nu <= {POISSON_RANGE[1]:g}") from None
-    try:
-        return check_poisson(value)
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+    value = _number(text, f"Poisson ratio nu = {text!r} is not a number; allowed range "
+                          f"{POISSON_RANGE[0]:g} < nu <= {POISSON_RANGE[1]:g}")
+    return _argument(check_poisson, value)
 
 
 def _ratio(text: str) -> float:

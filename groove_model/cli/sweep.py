@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import argparse
 import contextlib
 import signal
 import sys
@@ -18,6 +17,8 @@ from .common import (
     compliance_from,
     compliance_label,
     output_directory,
+    positive_integer,
+    require_certify_extra,
     traced_friction,
 )
 
@@ -34,28 +35,6 @@ fails (exit code 1, the failures on stderr). A progress bar is shown on a termin
 """
 
 
-def _count(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"-n = {text!r} is outside the allowed range: an "
-                                         "integer >= 1")
-    return value
-
-
-def _jobs(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"--jobs = {text!r} is outside the allowed range: an "
-                                         "integer >= 1")
-    return value
-
-
 def add_parser(subparsers):
     """Register ``groove sweep``; returns its parser."""
     p = add_command(
@@ -70,8 +49,9 @@ def add_parser(subparsers):
                    help="smallest k (1e-4 <= k <= 1e6)")
     p.add_argument("--k-max", required=True, type=traced_friction,
                    help="largest k (>= --k-min, <= 1e6)")
-    p.add_argument("-n", required=True, type=_count, help="number of k values (>= 1)")
-    p.add_argument("--jobs", type=_jobs, default=1,
+    p.add_argument("-n", required=True, type=positive_integer("-n"),
+                   help="number of k values (>= 1)")
+    p.add_argument("--jobs", type=positive_integer("--jobs"), default=1,
                    help="worker processes (default 1: in this process)")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--certify", action="store_true",
@@ -167,13 +147,7 @@ def run(args) -> int:
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     if args.certify:
-        # Imported here: only --certify needs to know whether python-flint is installed.
-        from continuation.numbers import require_flint
-
-        try:
-            require_flint()
-        except ImportError as exc:
-            raise UsageError(str(exc)) from None
+        require_certify_extra()
     compliance = compliance_from(args)
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
                             compliance=compliance, certify=args.certify)

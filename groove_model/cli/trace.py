@@ -16,6 +16,7 @@ from .common import (
     compliance_from,
     compliance_label,
     output_directory,
+    require_certify_extra,
 )
 
 __all__ = ["add_parser", "run"]
@@ -105,13 +106,7 @@ def run(args) -> int:
         raise UsageError(f"--figure {args.figure!r} is not a file name: give a name without "
                          "directories (the overlay is written inside --out)")
     if args.certify:
-        # Imported here: only --certify needs to know whether python-flint is installed.
-        from continuation.numbers import require_flint
-
-        try:
-            require_flint()
-        except ImportError as exc:
-            raise UsageError(str(exc)) from None
+        require_certify_extra()
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
     sets, failed = [], []

@@ -24,7 +24,8 @@ from continuation.numbers import FLOATS
 from ..model.boundaries import BoundarySystem, Condition, corner_point
 from .curves import POINT_ORDER, BoundaryCurve, BoundarySpecialPoint, PointKind, Where
 
-__all__ = ["DOMAIN_TOLERANCE", "Role", "Tagged", "assemble", "domain_events", "trace_curve",
+__all__ = ["DOMAIN_TOLERANCE", "Role", "Tagged", "assemble", "domain_events", "into_domain",
+           "trace_curve",
            "validity_events"]
 
 
@@ -226,7 +227,7 @@ def _physical_end(curve: Curve, tagged: list[Tagged], physical: np.ndarray, x: n
     return Where.REGIME_LIMIT
 
 
-def _into_domain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def into_domain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Points moved onto ``0 <= delta <= gamma <= pi/2`` where rounding put them just outside.
 
     The limit curves start on ``delta = 0`` and end along ``delta = gamma``, the ``upsilon = 0``
@@ -261,7 +262,7 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
 
     ``junctions``: ``(row, note, x)`` marks a junction at a row and puts it at ``x``.
     """
-    x, outside = _into_domain(system.to_x(curve.x))
+    x, outside = into_domain(system.to_x(curve.x))
     diffs = np.linalg.norm(np.diff(x, axis=0), axis=1)
     s = np.concatenate([[0.0], np.cumsum(diffs)])
     physical = np.array([system.is_physical(y, tol=PHYSICAL_TOLERANCE) for y in curve.x],

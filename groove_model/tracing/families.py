@@ -34,6 +34,7 @@ from continuation import Curve, Event, Family, Options, Problem, SpecialKind, tr
 
 from ..model.boundaries import BoundarySystem, Condition, dr_no_roll_branch_point, limit_seed
 from ..model.parameters import Compliance, Parameters
+from .assembly import into_domain
 
 __all__ = ["AXES", "START_OPTIONS", "Axis", "BoundaryFamily", "domain_events", "junction_event",
            "special_points"]
@@ -49,9 +50,6 @@ GAMMA_MIN = 1e-2
 
 _UP = np.array([0.0, 1.0, 0.0, 0.0])
 _CACHE_SIZE = 64
-
-#: how far outside the domain (radians in delta) a point may be computed by rounding alone
-DOMAIN_ROUNDING = 1e-12
 
 
 @dataclass(frozen=True)
@@ -151,20 +149,16 @@ class BoundaryFamily:
     def to_x(self, z: np.ndarray) -> np.ndarray:
         """``z = (y, p)`` (one point or rows) to ``x = (gamma, delta, beta_L, upsilon)``.
 
-        A ``delta`` outside ``[0, gamma]`` by at most ``DOMAIN_ROUNDING`` (a point on the edge
-        ``delta = 0``, e.g. a threshold where the junction is born, computed as ``-8e-14``) is
-        put on the edge, so that no row leaves the domain by rounding.
+        A point outside the domain by rounding only (a threshold on the edge ``delta = 0``
+        computed as ``delta = -8e-14``) is put on the edge, as the tracer does
+        (:func:`~groove_model.tracing.assembly.into_domain`).
         """
         z = np.atleast_2d(z)
         g = np.array([self.scale(p) for p in z[:, -1]])
         x = z[:, :4].copy()
         x[:, :2] *= g[:, None]
         x[:, 2] = x[:, 2] ** 2
-        below = (x[:, 1] < 0.0) & (x[:, 1] >= -DOMAIN_ROUNDING)
-        x[below, 1] = 0.0
-        above = (x[:, 1] > x[:, 0]) & (x[:, 1] <= x[:, 0] + DOMAIN_ROUNDING)
-        x[above, 1] = x[above, 0]
-        return x
+        return into_domain(x)[0]
 
     def from_x(self, x: np.ndarray, p: float) -> np.ndarray:
         """``x`` (``beta_L >= 0``) to chart coordinates at ``p``."""
