@@ -100,13 +100,10 @@ def trace(
     Step control (Allgower & Georg, sec. 6.1; Den Heijer & Rheinboldt 1981):
     with the contraction rate ``kappa`` of the first two Newton corrections,
     the first correction ``delta`` and the angle ``alpha`` between consecutive
-    tangents, compared with half their limits in ``options``,
+    tangents, compared with half their limits ``kappa~, delta~, alpha~`` in ``options``,
+    the next step is ``h_new = h / clip(f, 1/2, 2)`` with
 
-    .. math::
-
-        f = \\max\\left((\\kappa/\\tilde\\kappa)^{1/p},
-                        (\\delta/\\tilde\\delta)^{1/p}, \\alpha/\\tilde\\alpha\\right),
-        \\qquad h_{new} = h / \\mathrm{clip}(f, 1/2, 2),
+        f = max((kappa / kappa~)^(1/p), (delta / delta~)^(1/p), alpha / alpha~),
 
     where ``p`` is the order of the predictor error (2 Euler, 3 to 6 extrapolated).
     A step exceeding a limit, or whose corrector fails, is rejected and halved.

@@ -37,6 +37,15 @@ def test_one_k_commands_refuse_several(command, rest, tmp_path, capsys):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.parametrize("command, one", [("solve", True), ("map", True), ("trace", False),
+                                          ("audit", False)])
+def test_usage_shows_how_many_k_a_command_takes(command, one):
+    parser = build_parser()
+    usage = parser._subparsers._group_actions[0].choices[command].format_usage()
+    assert ("-k K [K ...]" in usage) is not one
+    assert "-k K" in usage
+
+
 def test_one_k_commands_accept_a_repeated_value(capsys):
     assert main(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1", "-k", "1"]) == 0
     assert capsys.readouterr().out.startswith("k = 1, ")

@@ -76,11 +76,21 @@ def add_verbose(parser: argparse.ArgumentParser) -> None:
                         help="log progress on standard error")
 
 
+class _Formatter(argparse.RawDescriptionHelpFormatter):
+    """The help of a command: its examples as written, and ``-k K`` for a command of one k."""
+
+    def _format_args(self, action, default_metavar):
+        if getattr(action, "one_value", False):
+            # read with nargs="+" so that `-k 1 10` gets a message that names both values
+            return self._metavar_formatter(action, default_metavar)(1)[0]
+        return super()._format_args(action, default_metavar)
+
+
 def add_command(subparsers, name: str, help: str, description: str,
                 examples: str) -> argparse.ArgumentParser:
     """Register one ``groove`` command whose help ends with its examples; returns its parser."""
     parser = subparsers.add_parser(name, help=help, description=description, epilog=examples,
-                                   formatter_class=argparse.RawDescriptionHelpFormatter)
+                                   formatter_class=_Formatter)
     add_verbose(parser)
     return parser
 
@@ -149,17 +159,20 @@ def traced_friction(text: str) -> float:
 
 
 def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "",
-                 traced: bool = True) -> None:
+                 traced: bool = True, several: bool = True) -> None:
     """``-k K [K ...]``, repeatable: every command reads ``-k 1 10`` and ``-k 1 -k 10`` alike.
 
     The values go to ``args.ks`` (a list, in the order given; None when not given). ``traced``:
-    the command traces boundaries, so ``1e-4 <= k <= 1e6`` (else any ``k > 0``).
+    the command traces boundaries, so ``1e-4 <= k <= 1e6`` (else any ``k > 0``). A command of
+    one ``k`` (``several=False``) shows ``-k K`` in its help and refuses several with
+    :func:`one_friction`.
     """
-    parser.add_argument("-k", action="extend", nargs="+",
+    action = parser.add_argument("-k", action="extend", nargs="+",
                         type=traced_friction if traced else friction, dest="ks",
                         metavar="K", required=required,
                         help=help or "friction coefficients (1e-4 <= k <= 1e6): -k 1 10 or "
                                      "-k 1 -k 10")
+    action.one_value = not several  # type: ignore[attr-defined]
 
 
 def one_friction(args, command: str) -> float:

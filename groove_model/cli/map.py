@@ -58,7 +58,7 @@ def add_parser(subparsers):
                     "the regions, overlay the traced boundaries, and write the figure. The "
                     "suffix of -o sets the format (.png, .svg, .pdf).",
         examples=_EXAMPLES)
-    add_friction(p, help="friction coefficient (1e-4 <= k <= 1e6); one per map")
+    add_friction(p, help="friction coefficient (1e-4 <= k <= 1e6); one per map", several=False)
     p.add_argument("-o", "--output", required=True, metavar="FIG.png",
                    help="figure file; its suffix (.png, .svg, .pdf) sets the format")
     p.add_argument("--svg", action="store_true",

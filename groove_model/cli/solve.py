@@ -50,7 +50,7 @@ def add_parser(subparsers):
     p.add_argument("--delta", required=True,
                    type=real("delta", "0 <= delta <= gamma"),
                    help="half-difference of the wall angles, 0 <= delta <= gamma")
-    add_friction(p, help="friction coefficient (> 0)", traced=False)
+    add_friction(p, help="friction coefficient (> 0)", traced=False, several=False)
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")

@@ -46,7 +46,12 @@ SPECIAL_POINT_COLUMNS = ("boundary", "k", "compliance", "kind", "gamma", "delta"
 
 
 class PointKind(str, enum.Enum):
-    """Kinds of boundary special points; the values are the names in the CSV files."""
+    """Kinds of boundary special points; the values are the names in the CSV files.
+
+    ``START`` and ``END`` bound each physical part of a boundary and the traced curve itself:
+    with ``keep_unphysical=True`` a curve can have an ``END`` where its regime stops being
+    valid (note ``regime limit: ...``) and another where the traced curve ends.
+    """
 
     START = "start"
     END = "end"
