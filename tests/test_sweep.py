@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from groove_model import trace_many
+from groove_model import Compliance, trace_many
 from groove_model.cli.main import main
 from groove_model.cli.sweep import Progress, sweep_values
 from groove_model.io.sweep import SWEEP_FILES, write_sweep
@@ -93,16 +93,42 @@ def test_results_come_in_the_order_given_with_a_small_window():
     assert [r.k for r in results] == ks
 
 
-@pytest.mark.parametrize("bad", [[0.0], [-1.0], [float("nan")], [float("inf")], ["x"]])
+@pytest.mark.parametrize("bad", [[0.0], [-1.0], [float("nan")], [float("inf")], [1e-5], [2e6]])
 def test_bad_k_is_rejected(bad):
-    with pytest.raises(ValueError, match="k"):
+    with pytest.raises(ValueError, match="friction coefficient k"):
         trace_many(bad)
+
+
+@pytest.mark.parametrize("bad", ["12", b"12", 1.0, ["x"], [True], [1.0, None]])
+def test_what_is_not_an_iterable_of_numbers_is_rejected(bad):
+    # a string is not read one character at a time ("12" is not k = 1 and k = 2)
+    with pytest.raises(TypeError):
+        trace_many(bad)
+
+
+def test_every_k_is_checked_before_any_is_traced(monkeypatch):
+    import groove_model.tracing.sweep as sweep
+
+    traced = []
+    monkeypatch.setattr(sweep, "_trace_chunk", lambda chunk, *args: traced.extend(chunk) or [])
+    with pytest.raises(ValueError, match="k = 10000000.0"):
+        trace_many([1.0, 1e7])
+    with pytest.raises(ValueError, match="compliance ratio"):
+        sweep_results([1.0], compliance=0.5)  # raised when called, not when consumed
+    assert traced == []
+
+
+def test_a_compliance_ratio_is_read_as_trace_atlas_reads_it():
+    ratio = next(sweep_results([1.0], compliance=0.8))
+    compliance = next(sweep_results([1.0], compliance=Compliance(0.8)))
+    pd.testing.assert_frame_equal(ratio.boundaries, compliance.boundaries)
+    assert set(ratio.boundaries["compliance"]) == {0.8}
 
 
 @pytest.mark.parametrize("jobs", [0, -2, 1.5, True])
 def test_bad_jobs_is_rejected(jobs):
     with pytest.raises(ValueError, match="jobs"):
-        list(sweep_results([1.0], jobs=jobs))
+        sweep_results([1.0], jobs=jobs)  # when called, before anything is traced
 
 
 def test_jobs_and_executor_together_are_rejected():
@@ -122,8 +148,8 @@ def test_a_failed_k_raises_with_every_result(monkeypatch):
 
     original = sweep._trace_chunk
 
-    def failing(ks, *args):
-        return [_failed(k) if k == 2.0 else r for k, r in zip(ks, original(ks, *args))]
+    def failing(chunk, *args):
+        return [_failed(p.k) if p.k == 2.0 else r for p, r in zip(chunk, original(chunk, *args))]
 
     monkeypatch.setattr(sweep, "_trace_chunk", failing)
     with pytest.raises(SweepError, match="k = 2.0: rs_no_roll") as error:

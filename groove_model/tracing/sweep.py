@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING
 
 from continuation import Options
 
-from ..model.parameters import Compliance, Parameters
+from ..model.parameters import Compliance, Parameters, check_traced
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
 
@@ -77,12 +77,11 @@ class SweepError(TraceError):
         self.results = results
 
 
-def _trace_chunk(ks: list, keep_unphysical: bool, options: Options | None,
-                 compliance: Compliance | None = None, certify: bool = False) -> list:
-    """Trace a chunk of ``k`` values (in a worker, or in this process); picklable."""
+def _trace_chunk(chunk: list[Parameters], keep_unphysical: bool, options: Options | None,
+                 certify: bool = False) -> list:
+    """Trace a chunk of checked parameters (in a worker, or in this process); picklable."""
     results = []
-    for k in ks:
-        params = Parameters(k, compliance or Compliance())
+    for params in chunk:
         traced = trace_boundaries(params, keep_unphysical=keep_unphysical, options=options,
                                   certify=certify)
         results.append(SweepResult(traced.k, traced.ok, traced.failures, traced.notes,
@@ -90,16 +89,23 @@ def _trace_chunk(ks: list, keep_unphysical: bool, options: Options | None,
     return results
 
 
-def _check_ks(ks) -> list:
-    try:
-        values = [float(k) for k in ks]
-    except (TypeError, ValueError):
-        raise ValueError(f"ks must be an iterable of numbers, got {ks!r}") from None
-    for k in values:
-        if not (math.isfinite(k) and k > 0.0):
-            raise ValueError(f"friction coefficient k = {k!r} is outside the allowed range: "
-                             "finite and > 0")
-    return values
+def _check_ks(ks, compliance: Compliance | float | None) -> list[Parameters]:
+    """Every ``k`` as checked :class:`Parameters`, before anything is traced.
+
+    The same checks as :func:`trace_boundaries` (a real number, finite, in the traced range,
+    with the compliance's ratio in its own), all up front, so that a bad ``k`` at the end of
+    a sweep does not throw away the traces before it.
+    """
+    if isinstance(ks, (str, bytes)) or not isinstance(ks, Iterable):
+        raise TypeError(f"ks must be an iterable of numbers, got {ks!r}")
+    if compliance is not None and not isinstance(compliance, Compliance):
+        compliance = Compliance(compliance)  # a ratio, as trace_atlas takes it
+    checked = []
+    for k in ks:
+        params = Parameters(k, compliance or Compliance())  # TypeError for str, bool, ...
+        check_traced(params)
+        checked.append(params)
+    return checked
 
 
 def _workers(jobs, executor) -> int:
@@ -134,7 +140,7 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
                   executor: concurrent.futures.Executor | None = None,
                   keep_unphysical: bool = False,
                   options: Options | None = None,
-                  compliance: Compliance | None = None,
+                  compliance: Compliance | float | None = None,
                   certify: bool = False) -> Iterator[SweepResult]:
     """Trace every ``k`` and yield one :class:`SweepResult` per ``k``, in the order given.
 
@@ -150,8 +156,9 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
         shut down. Its workers must be able to import ``groove_model``.
     keep_unphysical, options, certify
         As for :func:`~groove_model.tracing.tracer.trace_boundaries`.
-    compliance : Compliance, optional
-        The contact's compliance (default the paper's law), the same for every ``k``.
+    compliance : Compliance or float, optional
+        The contact's compliance or its ratio ``c`` (default the paper's law, ``c = 1``), the
+        same for every ``k``; ``2/3 <= c <= 1``.
 
     Yields
     ------
@@ -161,15 +168,19 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     Raises
     ------
     ValueError
-        If a ``k`` is not finite and > 0, ``jobs`` is not ``None`` or an integer >= 1, or
-        both ``jobs`` and ``executor`` are given.
+        When called, before anything is traced: if a ``k`` is outside the traced range
+        (or not finite), the compliance ratio outside ``[2/3, 1]``, ``jobs`` is not ``None``
+        or an integer >= 1, or both ``jobs`` and ``executor`` are given.
+    TypeError
+        When called: if ``ks`` is a string or not iterable, a ``k`` or the compliance is not
+        a real number, or ``executor`` is not an Executor.
 
     Notes
     -----
     At most ``4 x workers`` chunks of at most :data:`MAX_CHUNK` ``k`` are in flight, so memory
     does not grow with the number of ``k`` when the results are consumed as they come.
     """
-    values = _check_ks(ks)
+    values = _check_ks(ks, compliance)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise ValueError(f"jobs = {jobs!r} is outside the allowed range: None or an integer "
                          ">= 1")
@@ -178,10 +189,16 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     if executor is not None and not isinstance(executor, concurrent.futures.Executor):
         raise TypeError(f"executor must be a concurrent.futures.Executor, got "
                         f"{type(executor).__name__}")
-    args = (keep_unphysical, options, compliance, certify)
+    # checked here, when called; the traces run as the results are consumed
+    return _results(values, jobs, executor, (keep_unphysical, options, certify))
+
+
+def _results(values: list[Parameters], jobs: int | None,
+             executor: concurrent.futures.Executor | None, args: tuple) -> Iterator[SweepResult]:
+    """The results of :func:`sweep_results`, traced as they are consumed."""
     if executor is None and (jobs is None or jobs == 1):
-        for k in values:
-            yield from _trace_chunk([k], *args)
+        for params in values:
+            yield from _trace_chunk([params], *args)
         return
     workers = _workers(jobs, executor)
     size = max(1, min(MAX_CHUNK, len(values) // (WINDOW_PER_WORKER * workers)))
@@ -199,7 +216,8 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
 def trace_many(ks: Iterable[float], jobs: int | None = None, *,
                executor: concurrent.futures.Executor | None = None,
                keep_unphysical: bool = False, options: Options | None = None,
-               compliance: Compliance | None = None, certify: bool = False) -> pd.DataFrame:
+               compliance: Compliance | float | None = None,
+               certify: bool = False) -> pd.DataFrame:
     """Every boundary for many ``k``, as one table (long format, a ``k`` column).
 
     Parameters
@@ -225,6 +243,8 @@ def trace_many(ks: Iterable[float], jobs: int | None = None, *,
     ------
     SweepError
         If a ``k`` failed; it carries every result (``.results``), the failed ones included.
+    ValueError, TypeError
+        As for :func:`sweep_results`, before anything is traced.
 
     Notes
     -----
