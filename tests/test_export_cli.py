@@ -306,3 +306,23 @@ def test_a_boundary_curve_table_has_the_compliance_of_its_trace():
     assert mine["compliance"].eq(2.0 / 3.0).all()
     assert np.allclose(mine["T_over_N_L"], 1.0, rtol=1e-9)  # T = kN on the limit, k = 1
     pd.testing.assert_frame_equal(mine, theirs)
+
+
+def test_a_failed_trace_gives_no_table_and_no_file_unless_asked_for_partial(tmp_path):
+    # gamma_min above the fold of dr_limit: the limit curve stops short of its end
+    failed = trace_boundaries(1.0, gamma_min=0.5)
+    assert not failed.ok
+    for table in (failed.to_frame, failed.special_points_frame):
+        with pytest.raises(tracer_module.TraceError, match="partial=True") as error:
+            table()
+        assert error.value.boundary_set is failed
+    with pytest.raises(tracer_module.TraceError, match="failed"):
+        failed.curves["dr_limit"].to_frame()
+    with pytest.raises(tracer_module.TraceError):
+        write_boundary_set(failed, tmp_path / "out")
+    assert list(tmp_path.iterdir()) == []
+    # asked for, the rows traced so far, for inspection
+    partial = failed.to_frame(partial=True)
+    assert set(partial["boundary"]) == set(failed.curves)
+    assert len(failed.special_points_frame(partial=True))
+    assert len(failed.curves["dr_limit"].to_frame(partial=True))

@@ -36,12 +36,18 @@ def write_boundary_set(boundary_set: BoundarySet, directory,
     Floats are written with 17 significant digits, so a row recomputed from its own columns
     reproduces the traced point exactly. ``suffix`` ends the file names (e.g. ``"_nu0.3"`` for
     another compliance than the paper's).
+
+    Raises
+    ------
+    TraceError
+        If a boundary failed (nothing is written: a failed trace is not a result).
     """
+    # the tables first: they raise for a failed trace, before the directory is made
+    points = boundary_set.to_frame()
+    specials = boundary_set.special_points_frame()[list(SPECIAL_POINT_COLUMNS)]
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     points_name, specials_name = boundary_file_names(boundary_set.k, suffix)
-    points = boundary_set.to_frame()
-    specials = boundary_set.special_points_frame()[list(SPECIAL_POINT_COLUMNS)]
     paths = []
     for frame, name in ((points, points_name), (specials, specials_name)):
         paths.append(atomic_write(directory / name,

@@ -193,11 +193,22 @@ class BoundaryCurve:
         kind = PointKind(kind)
         return tuple(p for p in self.special_points if p.kind is kind)
 
-    def to_frame(self) -> pd.DataFrame:
+    def to_frame(self, partial: bool = False) -> pd.DataFrame:
         """The CSV table of this boundary (columns :data:`CSV_COLUMNS`), with the compliance
-        of its trace."""
+        of its trace.
+
+        Raises
+        ------
+        TraceError
+            If the boundary failed (``ok`` is False): its rows are not a whole boundary. With
+            ``partial=True`` they are returned all the same, for inspection.
+        """
         import pandas as pd  # only the tables need it, not the tracer
 
+        if not self.ok and not partial:
+            raise TraceError(f"{self.name} for k = {self.k!r} failed ({self.status}): its rows "
+                             "are not a whole boundary; to_frame(partial=True) gives them "
+                             "for inspection", None)
         return pd.DataFrame(self._columns(self.params or Parameters(self.k)),
                             columns=list(CSV_COLUMNS))
 
@@ -248,9 +259,24 @@ class BoundarySet:
     def failures(self) -> tuple:
         return tuple(f"{c.name}: {c.status}" for c in self.curves.values() if not c.ok)
 
-    def to_frame(self) -> pd.DataFrame:
-        """All boundaries as one table (columns :data:`CSV_COLUMNS`)."""
+    def _require_ok(self, partial: bool, what: str) -> None:
+        if not self.ok and not partial:
+            raise TraceError(f"k = {self.k!r}: {'; '.join(self.failures)}: the {what} of a "
+                             "failed trace are not whole boundaries; pass partial=True to "
+                             "get them for inspection", self)
+
+    def to_frame(self, partial: bool = False) -> pd.DataFrame:
+        """All boundaries as one table (columns :data:`CSV_COLUMNS`).
+
+        Raises
+        ------
+        TraceError
+            If a boundary failed (``ok`` is False; ``failures`` says which and why): its rows
+            are not a whole boundary. With ``partial=True`` every row traced is returned all
+            the same, for inspection.
+        """
         import pandas as pd  # only the tables need it, not the tracer
+        self._require_ok(partial, "rows")
         params = self.params or Parameters(self.k)
         if not self.curves:
             return pd.DataFrame(columns=list(CSV_COLUMNS))
@@ -260,9 +286,16 @@ class BoundarySet:
         return pd.DataFrame({name: np.concatenate([np.asarray(p[name]) for p in parts])
                              for name in CSV_COLUMNS}, columns=list(CSV_COLUMNS))
 
-    def special_points_frame(self) -> pd.DataFrame:
-        """All special points (columns :data:`SPECIAL_POINT_COLUMNS`, plus ``note``)."""
+    def special_points_frame(self, partial: bool = False) -> pd.DataFrame:
+        """All special points (columns :data:`SPECIAL_POINT_COLUMNS`, plus ``note``).
+
+        Raises
+        ------
+        TraceError
+            If a boundary failed, unless ``partial=True`` (as for :meth:`to_frame`).
+        """
         import pandas as pd  # only the tables need it, not the tracer
+        self._require_ok(partial, "special points")
         ratio = (self.params or Parameters(self.k)).c
         rows = [dict(boundary=p.boundary, k=self.k, compliance=ratio, kind=p.kind.value,
                      gamma=p.x[0], delta=p.x[1], beta_L=p.x[2], upsilon=p.x[3], note=p.note)

@@ -56,7 +56,8 @@ class SweepResult:
     notes : tuple of str
         ``BoundarySet.notes``.
     boundaries : pandas.DataFrame
-        The boundary rows (columns :data:`CSV_COLUMNS`).
+        The boundary rows (columns :data:`CSV_COLUMNS`); of a failed ``k``, the rows traced
+        before the failure, which are not whole boundaries.
     special_points : pandas.DataFrame
         The special points (columns :data:`SPECIAL_POINT_COLUMNS` and ``note``).
     """
@@ -85,7 +86,8 @@ def _trace_chunk(chunk: list[Parameters], keep_unphysical: bool, options: Option
         traced = trace_boundaries(params, keep_unphysical=keep_unphysical, options=options,
                                   certify=certify)
         results.append(SweepResult(traced.k, traced.ok, traced.failures, traced.notes,
-                                   traced.to_frame(), traced.special_points_frame()))
+                                   traced.to_frame(partial=True),
+                                   traced.special_points_frame(partial=True)))
     return results
 
 
