@@ -230,3 +230,19 @@ def test_an_atlas_in_nu_stays_inside_its_range():
     atlas = trace_atlas_in_poisson(10.0)
     for curve in atlas.curves.values():
         assert curve.values.min() >= 0.0 and curve.values.max() <= 0.5, curve.name
+
+
+def test_a_curve_answers_only_inside_the_range_of_its_atlas():
+    # the junction exists for every k > k_branch; outside the atlas's range the atlas cannot
+    # say, so it refuses instead of answering "no point" (an empty list)
+    atlas = trace_atlas((0.5, 20.0))
+    junction = atlas.curves["junction"]
+    assert len(junction.at(10.0)) == 1 and len(junction.at(20.0)) == 1
+    assert junction.at(1.0) == []  # inside the range, below k_branch: it does not exist
+    for value in (100.0, 0.49, float("nan"), -1.0, 0.0):
+        with pytest.raises(ValueError, match=r"0.5 <= k <= 20, the range of the atlas"):
+            junction.at(value)
+        with pytest.raises(ValueError, match="range of the atlas"):
+            junction.physical_at(value)
+    with pytest.raises(TypeError, match="real number"):
+        junction.at("10")

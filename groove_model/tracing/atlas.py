@@ -357,7 +357,7 @@ def _curve(start: _Start, traces: list[Codim2Curve], p_range) -> AtlasCurve:
     return AtlasCurve(start.name, start.boundary, start.kind, family.axis, z[:, -1].copy(),
                       family.to_x(z) if len(z) else np.zeros((0, 4)),
                       np.array([family.physical(row) for row in z], dtype=bool),
-                      tuple(traces), family)
+                      tuple(traces), family, (float(p_range[0]), float(p_range[1])))
 
 
 def _thresholds(start: _Start, trace: Codim2Curve, n_events: int) -> list[Threshold]:

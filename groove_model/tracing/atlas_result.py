@@ -87,6 +87,8 @@ class AtlasCurve:
         Whether the point lies on the physical part of its boundary.
     traces : tuple of Codim2Curve
         The engine's curves (in the chart of ``family``), for dense output.
+    p_range : (float, float)
+        The range of ``p`` of the atlas the curve belongs to: :meth:`at` answers inside it.
     """
 
     name: str
@@ -98,6 +100,7 @@ class AtlasCurve:
     physical: np.ndarray = field(repr=False)
     traces: tuple = field(repr=False)
     family: BoundaryFamily = field(repr=False)
+    p_range: tuple[float, float] = (-math.inf, math.inf)
 
     @property
     def values(self) -> np.ndarray:
@@ -115,8 +118,14 @@ class AtlasCurve:
         """The point(s) ``x`` of the curve at ``k`` (or ``nu``) ``= value``, corrected onto it.
 
         Empty where the curve does not exist.
+
+        Raises
+        ------
+        ValueError
+            If ``value`` is outside the atlas's range (where the atlas cannot say whether
+            the curve exists) or not a finite number.
         """
-        p = self.axis.to_p(value)
+        p = self._p(value)
         found: list[np.ndarray] = []
         for trace in self.traces:
             for z in trace.at(p):
@@ -125,9 +134,26 @@ class AtlasCurve:
                     found.append(x)
         return found
 
+    def _p(self, value: float) -> float:
+        """``p`` of ``value``, checked against the atlas's range."""
+        name = self.axis.name
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer,
+                                                             np.floating)):
+            raise TypeError(f"{name} must be a real number, got {value!r}")
+        lo, hi = (self.axis.value(end) for end in self.p_range)
+        allowed = f"{float(lo):.15g} <= {name} <= {float(hi):.15g}, the range of the atlas"
+        if not math.isfinite(value) or (name == "k" and value <= 0.0):
+            raise ValueError(f"{name} = {value!r} is outside the allowed range: {allowed}")
+        p = self.axis.to_p(value)
+        slack = 1e-12 * (1.0 + abs(p))
+        if not self.p_range[0] - slack <= p <= self.p_range[1] + slack:
+            raise ValueError(f"{name} = {value!r} is outside the allowed range: {allowed} (trace "
+                             f"an atlas over a range that holds it)")
+        return p
+
     def physical_at(self, value: float) -> list[np.ndarray]:
         """:meth:`at`, only the points on the physical part of the boundary."""
-        p = self.axis.to_p(value)
+        p = self._p(value)
         return [x for x in self.at(value)
                 if self.family.physical(np.append(self.family.from_x(x, p), p))]
 
