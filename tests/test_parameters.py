@@ -41,6 +41,9 @@ def test_bad_friction(k, error, message):
         (0.5, -0.1, "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma"),
         (float("nan"), 0.1, "gamma = nan rad is outside the allowed range finite"),
         ([0.1, 0.5], [0.0, 0.7], "delta = 0.7 rad is outside the allowed range"),
+        # tiny angles have only the relative slack: delta five times gamma is outside
+        (1e-301, 5e-301, "delta = 5e-301 rad is outside the allowed range 0 <= delta <= gamma"),
+        (0.0, 1e-300, "delta = 1e-300 rad is outside the allowed range 0 <= delta <= gamma"),
     ],
 )
 def test_bad_angles(gamma, delta, message):
@@ -54,6 +57,11 @@ def test_bad_angles(gamma, delta, message):
 def test_domain_accepts_its_closed_edges():
     gamma, delta = check_domain([0.0, math.pi / 2, math.pi / 2], [0.0, 0.0, math.pi / 2])
     assert np.all(delta <= gamma)
+
+
+def test_domain_takes_delta_a_subnormal_rounding_above_gamma_as_gamma():
+    gamma, delta = check_domain([5e-324, 1e-310], [1e-323, 1e-310])
+    assert list(delta) == list(gamma) == [5e-324, 1e-310]
 
 
 def test_angle_conversions_round_trip():

@@ -268,11 +268,17 @@ def gamma_delta_from_thetas(theta_L, theta_R):
     return 0.5 * (theta_L + theta_R), 0.5 * (theta_L - theta_R)
 
 
+#: the spacing of floats near 0
+_SMALLEST_SUBNORMAL = 5e-324
+
+
 def check_domain(gamma, delta):
     """Return ``gamma, delta`` as float arrays, or raise if any point is outside the domain.
 
     The domain is ``0 <= delta <= gamma <= pi/2`` (paper, below Eq. 3); a relative slack of
-    ``4 eps`` absorbs round-off in angles computed as ``pi/2`` or ``arctan`` of something.
+    ``4 eps`` (and of 4 units of the smallest subnormal number, where ``gamma`` is subnormal)
+    absorbs round-off in angles computed as ``pi/2`` or ``arctan`` of something. A ``delta``
+    within that slack above ``gamma`` is returned as ``gamma``.
 
     Raises
     ------
@@ -305,7 +311,7 @@ def check_domain(gamma, delta):
         if np.any(bad):
             value = float(values[bad].flat[0])
             raise ValueError(f"{name} = {value!r} rad is outside the allowed range {allowed}")
-    bad = delta_a > gamma_a * (1.0 + slack) + 1e-300
+    bad = delta_a > gamma_a * (1.0 + slack) + 4.0 * _SMALLEST_SUBNORMAL
     if np.any(bad):
         i = np.flatnonzero(bad.ravel())[0]
         raise ValueError(
