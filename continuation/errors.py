@@ -27,8 +27,9 @@ class CallbackError(ContinuationError):
 
 
 class CallbackShapeError(ContinuationError, ValueError):
-    """A residual, Jacobian or event function returned an array of the wrong shape.
+    """A residual, Jacobian or event function returned an array of the wrong shape, or
+    values that are not real (complex numbers, objects).
 
-    The message names the function, the shape found and the shape expected; ``curve``
+    The message names the function, what was found and what was expected; ``curve``
     holds the points traced before (status ``CALLBACK_FAILED``).
     """

@@ -259,7 +259,7 @@ class Evaluator:
             value = self._residual(x)
         except Exception as exc:
             raise _raised("residual", self.problem, x, exc) from exc
-        H = np.asarray(value, dtype=float)
+        H = _real(value, "residual", self.problem, x)
         if self._residual_shape is not None and H.shape != self._residual_shape:
             raise _wrong_shape("residual", self.problem, x, H.shape, self._residual_shape)
         return H
@@ -273,10 +273,27 @@ class Evaluator:
             value = self._jacobian(x)
         except Exception as exc:
             raise _raised("jacobian", self.problem, x, exc) from exc
-        J = np.asarray(value, dtype=float)
+        J = _real(value, "jacobian", self.problem, x)
         if self._jacobian_shape is not None and J.shape != self._jacobian_shape:
             raise _wrong_shape("jacobian", self.problem, x, J.shape, self._jacobian_shape)
         return J
+
+
+def _real(value, function: str, problem: Problem, x: np.ndarray) -> np.ndarray:
+    """``value`` as a float array; complex values are an error, not silently made real."""
+    array = np.asarray(value)
+    if array.dtype == np.float64:
+        return array
+    if array.dtype.kind == "c":
+        raise CallbackShapeError(
+            f"{function}(x) returned complex values (dtype {array.dtype}) at "
+            f"x={problem.describe(np.asarray(x, dtype=float))}: it must return real numbers")
+    try:
+        return array.astype(float)
+    except (TypeError, ValueError) as exc:
+        raise CallbackShapeError(
+            f"{function}(x) returned {array.dtype} values that are not real numbers at "
+            f"x={problem.describe(np.asarray(x, dtype=float))}: {exc}") from exc
 
 
 def _raised(function: str, problem: Problem, x: np.ndarray, exc: Exception):

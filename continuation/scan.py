@@ -117,7 +117,10 @@ def _event_slope(event: Event, node: Node, describe) -> float:
     x, t = node.x, node.tangent
     if event.gradient is not None:
         try:
-            gradient = np.asarray(event.gradient(x), dtype=float)
+            gradient = np.asarray(event.gradient(x))
+            if gradient.dtype.kind == "c":
+                raise TypeError(f"it returned complex values (dtype {gradient.dtype}), not real")
+            gradient = gradient.astype(float, copy=False)
         except Exception as exc:
             raise CallbackError(f"gradient of event '{event.name}' raised "
                                 f"{type(exc).__name__}: {exc} at x={describe(x)}") from exc

@@ -171,6 +171,25 @@ def test_a_wrong_shape_mid_curve_names_the_function_and_the_shapes(which, patter
     assert np.all(curve.x[:, 0] <= 0.5)
 
 
+@pytest.mark.parametrize("which", ["residual", "jacobian", "gradient"])
+def test_complex_values_are_an_error_not_made_real(which):
+    # numpy's float conversion drops an imaginary part with only a warning: the curve of
+    # H + 1e-3j would be traced as that of H, |H| = 1e-3 off at every point, status ok
+    def residual(x):
+        return np.array([x[1] - x[0]]) + (1e-3j if which == "residual" else 0.0)
+
+    def jacobian(x):
+        return np.array([[-1.0, 1.0]]) + (0j if which == "jacobian" else 0.0)
+
+    def gradient(x):
+        return np.array([1.0, 0.0]) + (0j if which == "gradient" else 0.0)
+
+    events = [Event("x = 2", lambda x: 2.0 - x[0], terminal=True, gradient=gradient)]
+    error = CallbackShapeError if which != "gradient" else CallbackError
+    with pytest.raises(error, match="complex"):
+        trace(Problem(residual, jacobian), [0.0, 0.0], direction=[1.0, 1.0], events=events)
+
+
 def test_no_point_off_the_curve_is_accepted_at_a_cusp():
     # y^2 = x^3 has a cusp at the origin, where H' = 0: near it |H| <= tol holds far from the
     # curve (at x = -1e-4, y = 0 it is 1e-12), and only the size of the Newton correction
