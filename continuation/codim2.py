@@ -275,7 +275,8 @@ def follow_fold(family: Family, start, p: float | None = None, coordinate: int |
     Raises
     ------
     ValueError
-        If an argument is out of range or the start has the wrong shape.
+        If an argument is out of range, the start has the wrong shape (an ``x`` without
+        ``p``), or ``parameter_range`` does not hold the start's ``p``.
 
     Notes
     -----
@@ -344,7 +345,15 @@ def _start_point(family: Family, start, p) -> np.ndarray:
                          "curve it was found on")
     else:
         z = x
-    H = family.residual_z(z)
+    try:
+        H = family.residual_z(z)
+    except Exception as exc:
+        if p is not None:
+            raise
+        # typically an x without its p: the family's functions index past the end of z
+        raise ValueError(f"start has {z.size} coordinates and no p was given: pass x with "
+                         f"p=, or z = (x, p); the residual at start raised "
+                         f"{type(exc).__name__}: {exc}") from exc
     if H.shape != (z.size - 2,):
         raise ValueError(f"start has {z.size - 1} coordinates x and p but the residual has "
                          f"shape {H.shape}: x needs n + 1 = {H.size + 1} coordinates")
@@ -382,6 +391,10 @@ def _follow(family, renew, system, z0, what, turn_kind, direction, options, even
     events = tuple(events)
     if parameter_range is not None:
         lo, hi = (float(v) for v in parameter_range)
+        p0 = float(z0[-1])
+        if not lo <= p0 <= hi:
+            raise ValueError(f"the start's {names[-1]} = {p0!r} is outside parameter_range = "
+                             f"({lo!r}, {hi!r}): it must hold the start, lo <= p <= hi")
         events += tuple(box_events({n2 - 1: lo}, {n2 - 1: hi}, names=names))
     heading = _direction(direction, n2)
     pieces, systems = [], []

@@ -214,3 +214,14 @@ def test_a_curve_stopped_by_the_limit_of_renewals_says_so(monkeypatch):
                         options=OPTIONS, parameter_range=(-1.0, 4.0))
     assert len(folds.pieces) == 2 and folds.status is Status.MAX_STEPS
     assert "stopped after 2 renewals" in folds.message
+
+
+def test_a_start_outside_the_parameter_range_is_refused():
+    # it was followed from mu = 3 through the whole range (5, 6) and reported ok
+    with pytest.raises(ValueError, match=r"mu = 3.0 is outside parameter_range = \(5.0, 6.0\)"):
+        follow_fold(cusp_family(), [-2.0, 1.0], p=3.0, coordinate=0, parameter_range=(5, 6))
+
+
+def test_an_x_start_without_p_names_the_missing_p():
+    with pytest.raises(ValueError, match="start has 2 coordinates and no p was given"):
+        follow_fold(cusp_family(), [-2.0, 1.0], coordinate=0)
