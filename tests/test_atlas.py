@@ -246,3 +246,9 @@ def test_a_curve_answers_only_inside_the_range_of_its_atlas():
             junction.physical_at(value)
     with pytest.raises(TypeError, match="real number"):
         junction.at("10")
+
+
+@pytest.mark.parametrize("bad", [1.0, (1.0, 2.0, 3.0), "12", None])
+def test_a_range_that_is_not_a_pair_is_named(bad):
+    with pytest.raises(TypeError, match="k_range must be a pair"):
+        trace_atlas(bad)

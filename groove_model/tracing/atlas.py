@@ -160,13 +160,29 @@ def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None =
     ValueError
         If ``k_min >= k_max``, or the range or the ratio is outside the traced ranges (the
         message names the value and the range).
+    TypeError
+        If ``k_range`` is not a pair of numbers.
     """
-    k_min, k_max = (check_traced_friction(check_friction(k)) for k in k_range)
+    k_min, k_max = (check_traced_friction(check_friction(k))
+                    for k in _pair("k_range", k_range, "(k_min, k_max)"))
     if compliance is None:
         compliance = Compliance()
     ratio = compliance.ratio if isinstance(compliance, Compliance) else Compliance(
         compliance).ratio
     return atlas_in_k((k_min, k_max), check_traced_ratio(ratio), options)
+
+
+def _pair(name: str, value, form: str) -> tuple:
+    """``value`` as a pair, or ``TypeError`` naming it (a range is two numbers)."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a pair {form}, got {value!r}")
+    try:
+        pair = tuple(value)
+    except TypeError:
+        raise TypeError(f"{name} must be a pair {form}, got {value!r}") from None
+    if len(pair) != 2:
+        raise TypeError(f"{name} must be a pair {form}, got {len(pair)} values: {value!r}")
+    return pair
 
 
 def atlas_in_k(k_range, ratio: float, options: Options | None = None) -> Atlas:
@@ -176,7 +192,7 @@ def atlas_in_k(k_range, ratio: float, options: Options | None = None) -> Atlas:
     reads the atlas over ``1e-4 c <= k <= 1e6 c`` (the same range of ``k/c`` for every ``c``),
     whose lower end lies below ``1e-4`` for ``c < 1``.
     """
-    k_min, k_max = (check_friction(k) for k in k_range)
+    k_min, k_max = (check_friction(k) for k in _pair("k_range", k_range, "(k_min, k_max)"))
     if not k_min < k_max:
         raise ValueError(f"k_range = {tuple(k_range)!r} must satisfy k_min < k_max")
     return _trace(Axis("k", Compliance(ratio).ratio), math.log(k_min), math.log(k_max),
@@ -197,7 +213,8 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
         ``0 <= nu_min < nu_max <= 1/2`` (the traced ranges).
     """
     k = check_traced_friction(check_friction(k))
-    nu_min, nu_max = (check_traced_poisson(nu) for nu in nu_range)
+    nu_min, nu_max = (check_traced_poisson(nu)
+                      for nu in _pair("nu_range", nu_range, "(nu_min, nu_max)"))
     if not nu_min < nu_max:
         raise ValueError(f"nu_range = {tuple(nu_range)!r} must satisfy nu_min < nu_max")
     return _trace(Axis("nu", k), nu_min, nu_max, (nu_min, nu_max), options or POISSON_OPTIONS)
