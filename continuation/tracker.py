@@ -79,10 +79,17 @@ def trace(
     Raises
     ------
     ValueError
-        If an argument has the wrong shape or value, or the residual or
-        Jacobian returns arrays of the wrong shape.
+        If an argument has the wrong shape or value.
+    CallbackShapeError
+        (a ``ValueError``) If the residual, the Jacobian or an event returns an array of
+        the wrong shape or complex values, at the start or later; always, whatever
+        ``raise_on_failure``, with the points traced before in ``error.curve``.
+    CallbackError
+        If the residual, the Jacobian or an event raises; always, with the points traced
+        before in ``error.curve`` and the original exception as ``__cause__``.
     ContinuationError
-        On failure when ``options.raise_on_failure`` is set.
+        On any other failure when ``options.raise_on_failure`` is set (otherwise the
+        failure is the returned curve's ``status`` and ``message``).
 
     Notes
     -----
