@@ -301,7 +301,7 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
                                                float(s[last]), int(index_map[last]), note))
     points.sort(key=lambda p: (p.index, POINT_ORDER[p.kind]))
     # Check the reported points in the x form of the paper's equations (the form written to CSV),
-    # each equation relative to the size of its terms.
+    # each equation divided by the largest size of its terms (row_scales).
     in_x = BoundarySystem(name, system.params)
     residual = _largest_scaled_residual(in_x, x[keep])
     status = curve.status.value if curve.ok else curve.message

@@ -148,7 +148,8 @@ class BoundaryCurve:
     residual : float
         Largest ``|H_i| / scale_i`` over the points, in the ``x`` form of the paper's
         equations (:meth:`groove_model.model.boundaries.BoundarySystem.scaled_residual`: each
-        equation relative to the size of its terms, which grow with ``k``).
+        equation divided by the largest size of its terms, which grows with ``k``:
+        :attr:`~groove_model.model.boundaries.BoundarySystem.row_scales`).
     start, end : Where
         Where the physical part starts and ends (``NOWHERE`` if it has none or the engine
         failed before its end).
