@@ -438,6 +438,12 @@ def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Cur
         offset_i += len(curve) - 1 if len(curve) else 0
     last = next((c for c in pieces if c.status.failed), pieces[-1])
     status, message = last.status, last.message
+    if status is Status.SINGULAR_START and last is pieces[0]:
+        # the engine's advice (a branch point of a curve: switch_branch) does not fit here
+        message = (f"the start is not a regular point of the curve of {what}: check that it "
+                   f"is a {what} at its p (a fold of that coordinate, for follow_fold), not a "
+                   f"degenerate one (a cusp); the augmented system's Jacobian is singular there "
+                   f"({message.split(' (')[0]})")
     ended = [p for p in last.special("event") if p.index == len(last) - 1]
     if (len(pieces) >= MAX_PIECES and status is Status.TERMINAL_EVENT and ended
             and ended[-1].event >= len(events)):

@@ -418,9 +418,10 @@ class BoundarySystem:
 
         ``|H_i(x)| / scale_i`` is the residual relative to that size, at which rounding is of
         order ``eps`` for every ``k`` and ``c`` (where the terms are much smaller, as near the
-        small-``gamma`` end of the limit curve, it is a larger error relative to them): 1 for the torque and ``upsilon = 0``,
-        ``max(1, c)`` for the double-rolling horizontal balance, ``sqrt(k^2 + c^2)`` for the
-        limit and the rolling right wall, ``1 + k`` for the rolling-sliding horizontal balance.
+        small-``gamma`` end of the limit curve, it is a larger error relative to them): 1 for
+        the torque and ``upsilon = 0``, ``max(1, c)`` for the double-rolling horizontal
+        balance, ``sqrt(k^2 + c^2)`` for the limit and the rolling right wall, ``1 + k`` for
+        the rolling-sliding horizontal balance.
         """
         k, c = self.params.k, self.params.c
         r = math.hypot(k, c)

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import collections
 import concurrent.futures
-import math
 import os
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field

@@ -11,6 +11,7 @@ from continuation import (
     Family,
     Options,
     SpecialKind,
+    Status,
     box_events,
     check_jacobian,
     follow_event,
@@ -225,3 +226,13 @@ def test_a_start_outside_the_parameter_range_is_refused():
 def test_an_x_start_without_p_names_the_missing_p():
     with pytest.raises(ValueError, match="start has 2 coordinates and no p was given"):
         follow_fold(cusp_family(), [-2.0, 1.0], coordinate=0)
+
+
+def test_a_start_that_is_no_fold_of_the_coordinate_is_named_so():
+    # (2, -1) at mu = 3 is a fold of lambda, not of u: the engine's advice for a singular
+    # start (a branch point: switch_branch) would mislead here
+    curve = follow_fold(cusp_family(), [2.0, -1.0], p=3.0, coordinate=1, direction=-1,
+                        parameter_range=(-1.0, 3.0))
+    assert curve.status is Status.SINGULAR_START
+    assert "not a regular point of the curve of fold of u" in curve.message
+    assert "switch_branch" not in curve.message
