@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import cast
 
 import numpy as np
@@ -155,6 +155,9 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
     options = Options() if options is None else options
     if not isinstance(options, Options):
         raise TypeError(f"options must be an Options, got {type(options).__name__}")
+    if isinstance(events, Event) or not isinstance(events, Iterable):
+        raise TypeError(f"events must be a sequence of Event instances (e.g. [event]), got "
+                        f"{type(events).__name__}")
     events = tuple(events)
     for event in events:
         if not isinstance(event, Event):

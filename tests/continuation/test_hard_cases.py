@@ -226,3 +226,9 @@ def test_a_wrong_length_start_is_suggested_as_the_cause():
     with pytest.raises(CallbackShapeError, match="or x0 has the wrong length: 1 equations "
                                                  "need 2 unknowns"):
         trace(circle, [1.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("events", [lambda x: x[0], Event("x = 1", lambda x: 1.0 - x[0])])
+def test_events_that_are_not_a_sequence_are_named(events):
+    with pytest.raises(TypeError, match="events must be a sequence of Event"):
+        trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=events)
