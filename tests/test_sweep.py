@@ -148,8 +148,8 @@ def test_a_failed_k_raises_with_every_result(monkeypatch):
 
     original = sweep._trace_chunk
 
-    def failing(chunk, *args):
-        return [_failed(p.k) if p.k == 2.0 else r for p, r in zip(chunk, original(chunk, *args))]
+    def failing(ks, *args):
+        return [_failed(k) if k == 2.0 else r for k, r in zip(ks, original(ks, *args))]
 
     monkeypatch.setattr(sweep, "_trace_chunk", failing)
     with pytest.raises(SweepError, match="k = 2.0: rs_no_roll") as error:

@@ -77,36 +77,39 @@ class SweepError(TraceError):
         self.results = results
 
 
-def _trace_chunk(chunk: list[Parameters], keep_unphysical: bool, options: Options | None,
-                 certify: bool = False) -> list:
-    """Trace a chunk of checked parameters (in a worker, or in this process); picklable."""
+def _trace_chunk(ks: list[float], keep_unphysical: bool, options: Options | None,
+                 compliance: Compliance, certify: bool = False) -> list:
+    """Trace a chunk of checked ``k`` values (in a worker, or in this process); picklable."""
     results = []
-    for params in chunk:
-        traced = trace_boundaries(params, keep_unphysical=keep_unphysical, options=options,
-                                  certify=certify)
+    for k in ks:
+        traced = trace_boundaries(Parameters(k, compliance), keep_unphysical=keep_unphysical,
+                                  options=options, certify=certify)
         results.append(SweepResult(traced.k, traced.ok, traced.failures, traced.notes,
                                    traced.to_frame(partial=True),
                                    traced.special_points_frame(partial=True)))
     return results
 
 
-def _check_ks(ks, compliance: Compliance | float | None) -> list[Parameters]:
-    """Every ``k`` as checked :class:`Parameters`, before anything is traced.
+def _check_ks(ks, compliance: Compliance | float | None) -> tuple[list[float], Compliance]:
+    """Every ``k`` as a float and the compliance, checked before anything is traced.
 
     The same checks as :func:`trace_boundaries` (a real number, finite, in the traced range,
     with the compliance's ratio in its own), all up front, so that a bad ``k`` at the end of
-    a sweep does not throw away the traces before it.
+    a sweep does not throw away the traces before it. Floats, not :class:`Parameters`: a
+    sweep of 1e5 ``k`` holds them all.
     """
     if isinstance(ks, (str, bytes)) or not isinstance(ks, Iterable):
         raise TypeError(f"ks must be an iterable of numbers, got {ks!r}")
-    if compliance is not None and not isinstance(compliance, Compliance):
+    if compliance is None:
+        compliance = Compliance()
+    elif not isinstance(compliance, Compliance):
         compliance = Compliance(compliance)  # a ratio, as trace_atlas takes it
-    checked = []
+    values = []
     for k in ks:
-        params = Parameters(k, compliance or Compliance())  # TypeError for str, bool, ...
+        params = Parameters(k, compliance)  # TypeError for str, bool, ...
         check_traced(params)
-        checked.append(params)
-    return checked
+        values.append(params.k)
+    return values, compliance
 
 
 def _workers(jobs, executor) -> int:
@@ -181,7 +184,7 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     At most ``4 x workers`` chunks of at most :data:`MAX_CHUNK` ``k`` are in flight, so memory
     does not grow with the number of ``k`` when the results are consumed as they come.
     """
-    values = _check_ks(ks, compliance)
+    values, checked = _check_ks(ks, compliance)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise ValueError(f"jobs = {jobs!r} is outside the allowed range: None or an integer "
                          ">= 1")
@@ -191,15 +194,15 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
         raise TypeError(f"executor must be a concurrent.futures.Executor, got "
                         f"{type(executor).__name__}")
     # checked here, when called; the traces run as the results are consumed
-    return _results(values, jobs, executor, (keep_unphysical, options, certify))
+    return _results(values, jobs, executor, (keep_unphysical, options, checked, certify))
 
 
-def _results(values: list[Parameters], jobs: int | None,
+def _results(values: list[float], jobs: int | None,
              executor: concurrent.futures.Executor | None, args: tuple) -> Iterator[SweepResult]:
     """The results of :func:`sweep_results`, traced as they are consumed."""
     if executor is None and (jobs is None or jobs == 1):
-        for params in values:
-            yield from _trace_chunk([params], *args)
+        for k in values:
+            yield from _trace_chunk([k], *args)
         return
     workers = _workers(jobs, executor)
     size = max(1, min(MAX_CHUNK, len(values) // (WINDOW_PER_WORKER * workers)))
