@@ -160,3 +160,14 @@ def test_keep_unphysical_keeps_and_flags_the_rest():
 def test_bad_friction_is_rejected():
     with pytest.raises(ValueError, match="friction coefficient k = -1.0 is outside"):
         trace_boundaries(-1.0)
+
+
+def test_keep_unphysical_says_what_it_does_not_trace():
+    # above k_branch rs_no_roll starts at the junction: its part from the seed (d_L < 0) is
+    # not traced even with keep_unphysical, and the result says so instead of leaving it out
+    kept = trace_boundaries(10.0, keep_unphysical=True)
+    assert any("rs_no_roll is traced from the junction" in note for note in kept.notes)
+    assert not any("rs_no_roll is traced from the junction" in note
+                   for note in trace_boundaries(10.0).notes)
+    below = trace_boundaries(1.0, keep_unphysical=True)  # from the seed: nothing left out
+    assert not any("rs_no_roll is traced from the junction" in note for note in below.notes)

@@ -96,8 +96,8 @@ def atlas_report(atlas: Atlas) -> str:
               f"| threshold | {symbol} | gamma | delta | beta_L | upsilon | residual | what |",
               "|---|---:|---:|---:|---:|---:|---:|---|"]
     for t in atlas.thresholds:
-        lines.append(f"| `{t.name}` | {t.value:.15g} | {t.x[0]:.15g} | {t.x[1]:.3g} | "
-                     f"{t.x[2]:.15g} | {t.x[3]:.3g} | {t.residual:.1e} | {t.what} |")
+        lines.append(f"| `{t.name}` | {t.value:.15g} | {t.x[0]:.15g} | {t.x[1]:.15g} | "
+                     f"{t.x[2]:.15g} | {t.x[3]:.15g} | {t.residual:.1e} | {t.what} |")
     for t in atlas.thresholds:
         lines += ["", f"**`{t.name}`** on `{t.curve}`, defining equations "
                       "(n = sin(beta)^(3/2), q = sqrt(sin beta), D = 2 sin(gamma) sin(delta), "

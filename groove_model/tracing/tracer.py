@@ -302,7 +302,10 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         (Mindlin's for Poisson ratios ``0 <= nu <= 1/2``): the ranges the tracer is verified
         for (:data:`~groove_model.model.parameters.TRACED_K_RANGE`).
     keep_unphysical : bool
-        Keep the parts of each boundary where its regime is not valid (flagged).
+        Keep the parts of each traced curve where its regime is not valid (flagged
+        ``physical = False``). Above ``k_branch``, ``rs_no_roll`` is traced from the junction,
+        where its physical part starts, so its unphysical part between the seed and the
+        junction is not traced (a note says so).
     options : continuation.Options, optional
         Engine settings; the default (:data:`DEFAULT_OPTIONS`) resolves the curves for plotting
         with residuals <= 1e-12. Folds are located in the coordinates ``options.fold_coordinates``
@@ -363,6 +366,10 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     curves.update(job.limit(junction))
     from_seed = expected["rs_no_roll"].start == Where.SEED.value
     curves["rs_no_roll"] = job.rs_no_roll(None if from_seed else junction)
+    if keep_unphysical and not from_seed:
+        notes.append("rs_no_roll is traced from the junction, where its physical part starts: "
+                     "its unphysical part from the seed (arctan(k/c), 0) to the junction "
+                     "(d_L < 0) is not traced, even with keep_unphysical")
 
     curves = _check(curves, params, notes, expected)
     distance = (_limit_distance(curves["dr_limit"], curves["rs_limit"], params)

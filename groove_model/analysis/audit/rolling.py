@@ -264,7 +264,10 @@ def check_dr_limit_steeper(ctx: Context) -> Finding:
         st = double_rolling_state(g, d, Parameters(1.0))
         worst_R = float(np.max(st["T_over_N_R"] / k))
         right_first = int(np.count_nonzero((dr["t"] > k * dr["n_R"]) & (dr["t"] <= k * dr["n_L"])))
-        per_k[k_label(k)] = {"max T/N_R / k on the limit": worst_R,
+        # on the grid's columns of the limit: at the seed (delta = 0) the walls are alike and
+        # T/N_R = k, the supremum; the claim is that the steeper wall reaches k first off it
+        per_k[k_label(k)] = {"max T/N_R / k on the limit's grid columns (1 at the seed)":
+                             worst_R,
                              "grid points with T/N_R > k >= T/N_L": right_first}
         ok &= worst_R < 1.0 and right_first == 0
     steeper_larger = int(np.count_nonzero(dr["T_over_N_L"] < dr["T_over_N_R"]))
