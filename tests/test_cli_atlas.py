@@ -62,6 +62,17 @@ def test_compliance_command(tmp_path, capsys):
     assert (frame["k"] == 1.0).all() and frame["nu"].min() == pytest.approx(0.4530818393, 1e-9)
 
 
+def test_compliance_files_of_close_values_do_not_overwrite_each_other(tmp_path):
+    # with f"{k:g}" names, k = 1.0000001 was written over k = 1 (and nu = 0.30000001 over
+    # nu = 0.3), exit 0, the report saying k = 1 twice
+    assert main(["compliance", "--poissons", "0.3", "0.30000001", "-k", "1", "1.0000001",
+                 "--out", str(tmp_path), "--no-figure"]) == 0
+    for stem in ("atlas_nu0.3", "atlas_nu0.30000001", "atlas_k1_in_nu", "atlas_k1.0000001_in_nu"):
+        assert (tmp_path / f"{stem}_thresholds.csv").exists()
+    report = (tmp_path / "compliance.md").read_text()
+    assert "k = 1.0000001" in report and "nu = 0.30000001" in report
+
+
 def test_compliance_options_helper():
     parser = argparse.ArgumentParser()
     add_compliance_options(parser)

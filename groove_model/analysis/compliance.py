@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.parameters import Compliance
+from ..model.parameters import Compliance, k_text
 from ..tracing.atlas import (
     DEFAULT_K_RANGE,
     DEFAULT_POISSON_RANGE,
@@ -107,7 +107,7 @@ class ComplianceStudy:
         ratios = {nu: _compliance(nu).ratio for nu in self.in_k}
         low, high = self.in_k[self.reference].range
         lines = ["# The atlas for Mindlin's compliance c = 2 (1 - nu)/(2 - nu)", "",
-                 "Poisson ratios " + ", ".join(f"nu = {nu:g} (c = {c:.6g})"
+                 "Poisson ratios " + ", ".join(f"nu = {k_text(nu)} (c = {c:.6g})"
                                                for nu, c in ratios.items())
                  + f"; k in [{low:g}, {high:g}].", ""]
         lines += _threshold_lines(self, ratios)
@@ -118,17 +118,17 @@ class ComplianceStudy:
         for nu, rows in self.topologies.items():
             if same and nu != self.reference:
                 continue
-            lines += ([f"nu = {nu:g}:"] if not same else []) + ["```"]
+            lines += ([f"nu = {k_text(nu)}:"] if not same else []) + ["```"]
             lines += [f"{label:<24}  " + "  |  ".join(cells) for label, cells in rows]
             lines += ["```", ""]
         lines += ["## How far each special point moves at a fixed k", "",
                   f"Distance in the (gamma, delta) plane to the point of nu = "
-                  f"{self.reference:g} at the same k, over {SHIFT_SAMPLES} log-spaced k.", "",
+                  f"{k_text(self.reference)} at the same k, over {SHIFT_SAMPLES} log-spaced k.", "",
                   "| nu | curve | largest shift [rad] | at k | compared at | on one side only |",
                   "|---:|---|---:|---:|---:|---:|"]
         for nu, curves in self.shifts.items():
             for name, row in curves.items():
-                lines.append(f"| {nu:g} | `{name}` | {row['max shift']:.4g} | "
+                lines.append(f"| {k_text(nu)} | `{name}` | {row['max shift']:.4g} | "
                              f"{row['at k']:.4g} | {row['compared at']} | "
                              f"{row['exists on one side only']} |")
         lines += ["", "## At a fixed k, in nu", ""]
@@ -137,7 +137,7 @@ class ComplianceStudy:
                              for name, nu in changes) or "none"
             spans = ", ".join(f"`{name}` moves by {dg:.3g} in gamma and {dd:.3g} in delta"
                               for name, (dg, dd) in self.span_in_nu()[k].items())
-            lines.append(f"- k = {k:g}: thresholds in nu: {text}. Over the range: {spans}.")
+            lines.append(f"- k = {k_text(k)}: thresholds in nu: {text}. Over the range: {spans}.")
         return "\n".join(lines) + "\n"
 
 
@@ -215,11 +215,11 @@ def _threshold_lines(study: ComplianceStudy, ratios: dict) -> list[str]:
     reference = study.thresholds[study.reference]
     lines = ["## Thresholds in k", "",
              "| nu | c | " + " | ".join(names) + " | "
-             + " | ".join(f"{n} / {n}(nu = {study.reference:g})" for n in names) + " |",
+             + " | ".join(f"{n} / {n}(nu = {k_text(study.reference)})" for n in names) + " |",
              "|---:|---:|" + "---:|" * (2 * len(names))]
     for nu, values in study.thresholds.items():
         cells = [f"{values[n]:.12g}" if n in values else "-" for n in names]
         cells += [f"{values[n] / reference[n]:.9f}" if n in values and n in reference else "-"
                   for n in names]
-        lines.append(f"| {nu:g} | {ratios[nu]:.6g} | " + " | ".join(cells) + " |")
+        lines.append(f"| {k_text(nu)} | {ratios[nu]:.6g} | " + " | ".join(cells) + " |")
     return lines

@@ -54,6 +54,7 @@ def run(args) -> int:
     from ..analysis.compliance import compliance_study
     from ..io.atlas import write_atlas
     from ..io.atomic import atomic_write
+    from ..model.parameters import k_text
 
     out = output_directory(args.out)
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
@@ -72,9 +73,9 @@ def run(args) -> int:
     out.mkdir(parents=True, exist_ok=True)
     paths = []
     for nu, atlas in study.in_k.items():
-        paths += write_atlas(atlas, out, f"atlas_nu{nu:g}")
+        paths += write_atlas(atlas, out, f"atlas_nu{k_text(nu)}")
     for k, atlas in study.in_nu.items():
-        paths += write_atlas(atlas, out, f"atlas_k{k:g}_in_nu")
+        paths += write_atlas(atlas, out, f"atlas_k{k_text(k)}_in_nu")
     report = study.to_markdown()
     paths.append(atomic_write(out / "compliance.md",
                               lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))

@@ -17,6 +17,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..model.parameters import k_text
 from ..tracing.atlas import ATLAS_COLUMNS, THRESHOLD_COLUMNS, Atlas
 from ..tracing.topology import format_table, thresholds_from_atlas
 from .atomic import atomic_write
@@ -73,7 +74,7 @@ def _range_text(atlas: Atlas) -> str:
     low, high = atlas.range
     if atlas.axis.name == "k":
         return f"k in [{low:g}, {high:g}], compliance ratio c = {atlas.axis.fixed:.10g}"
-    return f"nu in [{low:g}, {high:g}] (c = 2 (1 - nu)/(2 - nu)), k = {atlas.axis.fixed:g}"
+    return f"nu in [{low:g}, {high:g}] (c = 2 (1 - nu)/(2 - nu)), k = {k_text(atlas.axis.fixed)}"
 
 
 def atlas_report(atlas: Atlas) -> str:
