@@ -192,3 +192,13 @@ def test_friction_is_passed_as_k():
     assert by_keyword == solve_equilibrium(0.6, 0.2, 1.0)
     assert by_keyword == solve_equilibrium(0.6, 0.2, k=Parameters(1.0))
     assert regime_validity(0.6, 0.2, k=1.0) == regime_validity(0.6, 0.2, 1.0)
+
+
+@pytest.mark.parametrize("k", [1e15, 1e16, 1e17, 1e300])
+def test_the_closed_groove_slides_on_both_walls_for_every_k(k):
+    # at gamma = pi/2 (the float) on delta = 0, T/N = c tan gamma is infinite: double sliding.
+    # For k >= 1e16 arctan(k) rounds to pi/2 too, and the state was the double-rolling NaN
+    eq = solve_equilibrium(math.pi / 2, 0.0, k)
+    assert eq.regime == "double_sliding"
+    assert all(math.isfinite(v) for v in (eq.beta_L, eq.beta_R, eq.upsilon, eq.d_L))
+    assert eq.T_over_N_L == eq.T_over_N_R == k

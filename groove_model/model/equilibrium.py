@@ -472,7 +472,9 @@ def solve_equilibrium(gamma, delta, k) -> Equilibrium:
         i = np.flatnonzero(failed)[0]
         raise RuntimeError(f"double-rolling root not found at gamma = {gamma[i]!r} rad, "
                            f"delta = {delta[i]!r} rad, although it is bracketed there")
-    sliding_both = (delta == 0.0) & (gamma > params.gamma_limit)
+    # gamma = pi/2 (the float) is the closed groove, T/N = c tan gamma = inf > k for every k,
+    # also where arctan(k/c) rounds to pi/2 (k/c >= 1e16)
+    sliding_both = (delta == 0.0) & ((gamma > params.gamma_limit) | (gamma >= HALF_PI))
     with np.errstate(invalid="ignore"):
         use_dr = (dr["T_over_N_L"] <= k) & (dr["T_over_N_R"] <= k) & ~sliding_both
     # On delta = 0, T/N = c tan gamma <= k exactly when gamma <= arctan(k/c); deciding by the
