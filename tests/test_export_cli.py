@@ -261,6 +261,29 @@ def test_plot_refuses_the_same_k_twice(written, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("column, value, message", [
+    ("k", 1e9, "k = 1000000000.0 is outside the range the boundaries are traced for"),
+    ("compliance", 5.0, "compliance ratio c = 5.0 is outside the range the boundaries are traced"),
+])
+def test_plot_refuses_a_k_or_compliance_outside_the_traced_ranges(column, value, message,
+                                                                   written, tmp_path, capsys):
+    frame = _csv_text(written)
+    frame[column] = value
+    path = tmp_path / "bad.csv"
+    frame.to_csv(path, index=False)
+    assert message in _plot_refused([path], tmp_path, capsys)
+
+
+def test_rows_in_any_order_read_back_along_each_boundary(written, tmp_path):
+    # a shuffled (or re-sorted) file was drawn as a zig-zag: the rows are put back in the
+    # order of the boundaries and of s, the arclength along each
+    out, _ = written
+    path = tmp_path / "shuffled.csv"
+    _csv_text(written).sample(frac=1.0, random_state=3).to_csv(path, index=False)
+    pd.testing.assert_frame_equal(read_boundaries_csv(path),
+                                  read_boundaries_csv(out / "boundaries_k1.csv"))
+
+
+@pytest.mark.parametrize("column, value, message", [
     ("gamma", "1.6", "column gamma = '1.6' in data row 2 is outside the allowed range "
                      "0 <= gamma <= pi/2"),
     ("gamma", "-0.1", "column gamma = '-0.1' in data row 2 is outside the allowed range"),

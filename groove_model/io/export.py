@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.boundaries import BOUNDARY_NAMES
-from ..model.parameters import k_text
+from ..model.parameters import check_traced_friction, check_traced_ratio, k_text
 from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
 from .atomic import atomic_write, remove_stale_temporaries
 
@@ -64,8 +64,11 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     OSError
         If the file cannot be read.
     ValueError
-        If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name, or
-        a value that is not a number (the message names the column, value and row).
+        If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name, a
+        value that is not a number, a point outside the domain, or a ``k`` or compliance ratio
+        outside the ranges the boundaries are traced for (the message names the column, value
+        and row). The rows come back in the order along each boundary (increasing ``s``),
+        whatever their order in the file.
 
     Notes
     -----
@@ -115,7 +118,16 @@ def read_boundaries_csv(path) -> pd.DataFrame:
                 f"{path}: column {column} holds {len(values)} values ("
                 f"{', '.join(map(k_text, values[:3]))}{', ...' if len(values) > 3 else ''}); "
                 f"a boundaries CSV holds one {column}, as groove trace writes it")
+    for check in (check_traced_friction, check_traced_ratio):
+        try:
+            check(float(frame["k" if check is check_traced_friction else "compliance"].iloc[0]))
+        except ValueError as exc:
+            raise ValueError(f"{path}: {exc}") from None
     _check_domain_rows(path, frame)
+    # the boundaries in their order, each along its arclength s, whatever the file's order
+    order = frame["boundary"].map({name: i for i, name in enumerate(BOUNDARY_NAMES)})
+    frame = frame.assign(_order=order).sort_values(["_order", "s"], kind="stable") \
+        .drop(columns="_order").reset_index(drop=True)
     frame["point"] = frame["point"].fillna("")
     physical = frame["physical"].astype(str).str.lower()
     if not physical.isin(["true", "false"]).all():
