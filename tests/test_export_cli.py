@@ -349,3 +349,19 @@ def test_a_failed_trace_gives_no_table_and_no_file_unless_asked_for_partial(tmp_
     assert set(partial["boundary"]) == set(failed.curves)
     assert len(failed.special_points_frame(partial=True))
     assert len(failed.curves["dr_limit"].to_frame(partial=True))
+
+
+def test_an_upper_case_suffix_names_the_file_written(written, tmp_path):
+    # -o x.PNG wrote x.png, another file (that may exist already)
+    out, _ = written
+    assert main(["plot", str(out / "boundaries_k1.csv"), "-o", str(tmp_path / "x.PNG")]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["x.PNG"]
+
+
+def test_trace_refuses_a_figure_name_in_a_format_it_does_not_write(tmp_path, capsys):
+    # --figure x.pdf wrote x.png and x.svg
+    with pytest.raises(SystemExit) as info:
+        main(["trace", "-k", "1", "--out", str(tmp_path / "out"), "--figure", "x.pdf"])
+    assert info.value.code == 2
+    assert "writes NAME.png and NAME.svg" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()

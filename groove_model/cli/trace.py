@@ -105,6 +105,11 @@ def run(args) -> int:
                                     or Path(args.figure).name != args.figure):
         raise UsageError(f"--figure {args.figure!r} is not a file name: give a name without "
                          "directories (the overlay is written inside --out)")
+    if args.figure is not None and Path(args.figure).suffix.lower() in (".pdf", ".jpg", ".jpeg",
+                                                                       ".eps", ".ps", ".tif"):
+        raise UsageError(f"--figure {args.figure!r} asks for a format groove trace does not write:"
+                         " it writes NAME.png and NAME.svg; give NAME without a suffix (groove "
+                         "plot -o NAME.pdf draws a PDF from the CSVs)")
     if args.certify:
         require_certify_extra()
     compliance = compliance_from(args)

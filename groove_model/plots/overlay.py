@@ -196,7 +196,9 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     ax.set_title("Regime boundaries of a ball in a groove, " + title, fontsize=10)
     written = []
     for fmt in formats:
-        target = stem.parent / f"{stem.name}.{fmt}"
+        # the path as given for its own format (x.PNG stays x.PNG), the stem + suffix else
+        own = path.suffix.lower() == f".{fmt}"
+        target = path if own else stem.parent / f"{stem.name}.{fmt}"
         with matplotlib.rc_context({"svg.hashsalt": "groove"}):
             written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
                 tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))

@@ -336,7 +336,8 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
                  fontsize=10)
     written = []
     for fmt in formats:
-        target = path.with_suffix("." + fmt)
+        # the path as given for its own format (x.PNG stays x.PNG)
+        target = path if path.suffix.lower() == "." + fmt else path.with_suffix("." + fmt)
         # A fixed hash salt and no date make the SVG the same on every run.
         with matplotlib.rc_context({"svg.hashsalt": "groove"}):
             written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
