@@ -161,7 +161,9 @@ def test_dimensional_results_satisfy_vertical_balance_and_hertz():
     [
         (dict(radius=-1.0), "radius R = -1.0 m is outside the allowed range: finite and > 0"),
         (dict(young=0.0), "Young's modulus E = 0.0 Pa is outside the allowed range"),
-        (dict(poisson=0.5), "Poisson ratio nu = 0.5 is outside the allowed range -1 < nu < 0.5"),
+        (dict(poisson=0.6), "Poisson ratio nu = 0.6 is outside the allowed range -1 < nu <= 0.5"),
+        # overflow is named, not returned as inf and NaN
+        (dict(young=1e-300, mass=1e300), "the dimensional results overflow double precision"),
         (dict(mass=float("inf")), "mass M = inf kg is outside the allowed range"),
     ],
 )
@@ -170,6 +172,14 @@ def test_dimensional_input_errors(kwargs, message):
     args = dict(radius=0.01, young=2e11, poisson=0.3, mass=0.03) | kwargs
     with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)")):
         dimensional_state(eq, **args)
+
+
+def test_dimensional_results_of_an_incompressible_ball():
+    # nu = 1/2 is allowed everywhere else (Mindlin's ratio 2/3); Hertz holds there too
+    eq = solve_equilibrium(0.6, 0.2, 1.0)
+    half = dimensional_state(eq, radius=0.01, young=2e11, poisson=0.5, mass=0.03)
+    near = dimensional_state(eq, radius=0.01, young=2e11, poisson=0.5 - 1e-12, mass=0.03)
+    assert half.Z == pytest.approx(near.Z, rel=1e-10) and math.isfinite(half.N_L)
 
 
 @pytest.mark.parametrize("k", [1.0, math.sqrt(3.0), 10.0])

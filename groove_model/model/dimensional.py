@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .equilibrium import Equilibrium
+from .parameters import check_poisson
 
 __all__ = ["DimensionalState", "dimensional_state"]
 
@@ -67,7 +68,7 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     young : float
         Young's modulus ``E`` in Pa, > 0.
     poisson : float
-        Poisson ratio ``nu``, ``-1 < nu < 0.5``.
+        Poisson ratio ``nu``, ``-1 < nu <= 0.5``.
     mass : float
         Ball mass ``M`` in kg, > 0.
     g : float
@@ -87,12 +88,7 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     E = _positive("Young's modulus E", young, "Pa")
     M = _positive("mass M", mass, "kg")
     g = _positive("gravitational acceleration g", g, "m/s^2")
-    try:
-        nu = float(poisson)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"Poisson ratio nu must be a real number, got {poisson!r}") from exc
-    if not -1.0 < nu < 0.5:
-        raise ValueError(f"Poisson ratio nu = {nu!r} is outside the allowed range -1 < nu < 0.5")
+    nu = check_poisson(poisson)  # -1 < nu <= 1/2: Hertz holds for an incompressible ball too
     G = 3.0 * (1.0 - nu * nu) / (4.0 * E)
     C = math.sqrt(R) / G
     n_L, n_R, t = (np.asarray(v, float) for v in (eq.n_L, eq.n_R, eq.t))
@@ -106,12 +102,18 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
             f"no dimensional equilibrium at gamma = {gamma!r} rad: the Hertz forces cannot carry "
             "the weight (scaled vertical force ~ 0; at gamma = pi/2 the groove is closed and "
             "beta_L = beta_R = 0); allowed range for dimensional results: gamma < pi/2")
-    Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
-    scale = C * Z**1.5
-    N_L, N_R = scale * n_L, scale * n_R
-    values = dict(Z=Z, N_L=N_L, N_R=N_R, T=scale * t, a_L=np.cbrt(G * N_L * R),
-                  a_R=np.cbrt(G * N_R * R), d_L=Z * np.asarray(eq.d_L, float),
-                  d_R=Z * np.asarray(eq.d_R, float))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is named below
+        Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
+        scale = C * Z**1.5
+        N_L, N_R = scale * n_L, scale * n_R
+        values = dict(Z=Z, N_L=N_L, N_R=N_R, T=scale * t, a_L=np.cbrt(G * N_L * R),
+                      a_R=np.cbrt(G * N_R * R), d_L=Z * np.asarray(eq.d_L, float),
+                      d_R=Z * np.asarray(eq.d_R, float))
+    if not all(np.all(np.isfinite(v)) for v in values.values()):
+        name = next(key for key, v in values.items() if not np.all(np.isfinite(v)))
+        raise ValueError(f"the dimensional results overflow double precision ({name} is not "
+                         f"finite) for R = {R!r} m, E = {E!r} Pa, M = {M!r} kg, g = {g!r} m/s^2: "
+                         "give the parameters in a range where Z = (M g / C)^(2/3) is finite")
     if np.ndim(Z) == 0:
         values = {key: float(v) for key, v in values.items()}
     return DimensionalState(**values)
