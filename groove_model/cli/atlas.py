@@ -62,10 +62,12 @@ def run(args) -> int:
     # Imported here, not at the top: the atlas loads the engine, scipy and pandas, and the
     # figure matplotlib, which `groove --help` should not wait for.
     from ..io.atlas import STANDARD_CURVES, write_atlas
+    from ..model.parameters import k_text
     from ..tracing.atlas import trace_atlas
 
     if not args.k_min < args.k_max:
-        raise UsageError(f"--k-min {args.k_min:g} must be below --k-max {args.k_max:g}")
+        raise UsageError(f"--k-min {k_text(args.k_min)} must be below --k-max "
+                         f"{k_text(args.k_max)}")
     out = output_directory(args.out)
     compliance = compliance_from(args)
     try:

@@ -289,10 +289,11 @@ def _traced_ratio(text: str) -> float:
 
 def traced_poisson(text: str) -> float:
     """Argument type of the Poisson ratio of a traced command: ``0 <= nu <= 1/2``."""
-    value = poisson(text)
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_poisson
 
+    value = _number(text, f"Poisson ratio nu = {text!r} is not a number; allowed range "
+                          "0 <= nu <= 0.5")
     return _argument(check_traced_poisson, value)
 
 

@@ -103,7 +103,9 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         bad = values.isna() | (~np.isfinite(values) if finite_required else False)
         if bad.any():
             row = int(np.flatnonzero(bad.to_numpy())[0])
-            raise ValueError(f"{path}: column {column} = {frame[column].iloc[row]!r} in data row "
+            shown = frame[column].iloc[row]
+            shown = float(shown) if isinstance(shown, (float, np.floating)) else shown
+            raise ValueError(f"{path}: column {column} = {shown!r} in data row "
                              f"{row + 1} is not a {'finite ' if finite_required else ''}number")
         frame[column] = values.astype(float)
     for column, name in (("k", "friction coefficient k"), ("compliance", "compliance ratio")):

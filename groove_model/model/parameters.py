@@ -116,8 +116,9 @@ def check_traced_ratio(c: float) -> float:
 
 
 def check_traced_poisson(nu: float) -> float:
-    """``nu`` if inside :data:`TRACED_POISSON_RANGE`, else ``ValueError``."""
-    nu = check_poisson(nu)
+    """``nu`` if inside :data:`TRACED_POISSON_RANGE`, else ``ValueError`` (naming that range,
+    not the wider one of :func:`check_poisson`)."""
+    nu = _check_real("Poisson ratio nu", nu)
     if not TRACED_POISSON_RANGE[0] <= nu <= TRACED_POISSON_RANGE[1]:
         raise ValueError(f"Poisson ratio nu = {nu!r} is outside the range the boundaries are "
                          "traced for: 0 <= nu <= 0.5")

@@ -58,7 +58,7 @@ from ..model.boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from ..model.parameters import Parameters, check_traced
+from ..model.parameters import Parameters, check_traced, k_text
 from .assembly import (
     Role,
     Tagged,
@@ -244,7 +244,7 @@ class _Job:
         if len(curve.x) == 1:
             return {}, [f"dr_no_roll reduces to its branch point (arctan sqrt 2, 0) for "
                         f"k = {params.k!r}: T/N = c sqrt 2 = k there and > k beyond"], junction
-        return {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "
+        return {}, [f"dr_no_roll has no physical part for k = {k_text(params.k)}: "
                     "T/N_L > k all along it"], junction
 
     def limit(self, junction) -> dict:
@@ -359,8 +359,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     curves: dict[str, BoundaryCurve]
     if expected["dr_no_roll"].present is False and not keep_unphysical:
         # below k_branch the atlas has no junction: dr_no_roll has no physical part
-        curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = {params.k:g}: "
-                                       "T/N_L > k all along it"], None
+        curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = "
+                                       f"{k_text(params.k)}: T/N_L > k all along it"], None
     else:
         curves, notes, junction = job.dr_no_roll()
     curves.update(job.limit(junction))
