@@ -271,7 +271,9 @@ def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
     assert b"\r[" in screen and b"2/2 k" in screen
 
 
-def test_a_terminated_sweep_leaves_no_file(tmp_path):
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+def test_a_terminated_sweep_leaves_no_file(signum, tmp_path):
+    # SIGHUP: the terminal closed; it left the temporary files behind
     out = tmp_path / "out"
     code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
     process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
@@ -280,7 +282,7 @@ def test_a_terminated_sweep_leaves_no_file(tmp_path):
     deadline = time.monotonic() + 120
     while not (out.exists() and any(out.iterdir())) and time.monotonic() < deadline:
         time.sleep(0.05)  # until the temporary files exist
-    process.send_signal(signal.SIGTERM)
+    process.send_signal(signum)
     process.communicate(timeout=120)
-    assert process.returncode == 128 + signal.SIGTERM
+    assert process.returncode == 128 + signum
     assert list(out.iterdir()) == []

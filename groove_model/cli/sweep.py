@@ -98,8 +98,9 @@ class Progress:
 
 
 class _Termination:
-    """Turns SIGTERM into ``SystemExit(143)`` raised between two results of the sweep, so a
-    killed sweep removes its temporary files and stops its workers like an interrupted one.
+    """Turns SIGTERM (and SIGHUP) into ``SystemExit(128 + signal)`` raised between two results
+    of the sweep, so a killed sweep removes its temporary files and stops its workers like an
+    interrupted one.
 
     The handler only records the signal: an exception raised inside the process pool's own
     bookkeeping (starting its threads and processes) could leave it unable to shut down.
@@ -123,11 +124,14 @@ class _Termination:
         def record(signum, frame):
             self.signum = signum
 
-        previous = signal.signal(signal.SIGTERM, record)
+        # SIGHUP (the terminal closed) as SIGTERM; it does not exist on Windows
+        signums = [signal.SIGTERM, *([signal.SIGHUP] if hasattr(signal, "SIGHUP") else [])]
+        previous = {signum: signal.signal(signum, record) for signum in signums}
         try:
             yield self
         finally:
-            signal.signal(signal.SIGTERM, previous)
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
         if self.signum is not None:
             raise SystemExit(128 + self.signum)
 
