@@ -365,3 +365,25 @@ def test_trace_refuses_a_figure_name_in_a_format_it_does_not_write(tmp_path, cap
     assert info.value.code == 2
     assert "writes NAME.png and NAME.svg" in capsys.readouterr().err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_file_that_cannot_be_written_is_named_and_its_pair_is_not_written(tmp_path, capsys):
+    # a directory in the way of special_points_k1.csv: boundaries_k1.csv was written alone,
+    # and the message named the hidden temporary file with exit code 2 (a usage error)
+    out = tmp_path / "out"
+    (out / "special_points_k1.csv").mkdir(parents=True)
+    assert main(["trace", "-k", "1", "--out", str(out), "--no-figure"]) == 1
+    err = capsys.readouterr().err
+    assert f"cannot write {out / 'special_points_k1.csv'}: it exists and is not a file" in err
+    assert sorted(p.name for p in out.iterdir()) == ["special_points_k1.csv"]
+
+
+def test_a_failed_write_names_the_target_not_its_temporary_file(tmp_path):
+    from groove_model.io.atomic import WriteError
+
+    def write(tmp):
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(WriteError, match=r"cannot write .*x\.csv: No space left on device"):
+        atomic_write(tmp_path / "x.csv", write)
+    assert list(tmp_path.iterdir()) == []

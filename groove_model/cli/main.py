@@ -69,5 +69,11 @@ def main(argv=None) -> int:
     except UsageError as exc:
         parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
     except OSError as exc:
+        # Imported here, not at the top: only a failed write needs it (it is light).
+        from ..io.atomic import WriteError
+
+        if isinstance(exc, WriteError):  # the input was fine: the output could not be written
+            print(f"groove {args.command}: error: {exc.strerror}", file=sys.stderr)
+            return EXIT_FAILED
         parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
     return EXIT_FAILED  # pragma: no cover

@@ -16,7 +16,8 @@ import secrets
 import socket
 from pathlib import Path
 
-__all__ = ["atomic_write", "commit_temporary", "create_temporary", "remove_stale_temporaries"]
+__all__ = ["WriteError", "atomic_write", "commit_temporary", "create_temporary",
+           "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
 
@@ -140,6 +141,10 @@ def _sync_directory(directory: Path) -> None:
         os.close(fd)
 
 
+class WriteError(OSError):
+    """A file could not be written; the message names the file (not its temporary name)."""
+
+
 def atomic_write(path, write) -> Path:
     """Call ``write(tmp_path)`` and move the result to ``path`` atomically.
 
@@ -155,6 +160,12 @@ def atomic_write(path, write) -> Path:
     Path
         ``path``.
 
+    Raises
+    ------
+    WriteError
+        An ``OSError`` naming ``path`` (not the temporary file) and the reason, if the file
+        cannot be written (a full disk, no permission, a directory in the way).
+
     Notes
     -----
     The temporary file is created with the permissions an ordinary ``open()`` would give
@@ -164,11 +175,17 @@ def atomic_write(path, write) -> Path:
     directory removes it (:func:`remove_stale_temporaries`).
     """
     path = Path(path)
-    remove_stale_temporaries(path.parent)
-    tmp = create_temporary(path)
+    try:
+        remove_stale_temporaries(path.parent)
+        tmp = create_temporary(path)
+    except OSError as exc:
+        raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
     try:
         write(tmp)
         commit_temporary(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
     except BaseException:
         tmp.unlink(missing_ok=True)
         raise

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import errno
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +11,7 @@ import pandas as pd
 from ..model.boundaries import BOUNDARY_NAMES
 from ..model.parameters import check_traced_friction, check_traced_ratio, k_text
 from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
-from .atomic import atomic_write, remove_stale_temporaries
+from .atomic import WriteError, atomic_write, remove_stale_temporaries
 
 __all__ = [
     "atomic_write",
@@ -48,6 +49,11 @@ def write_boundary_set(boundary_set: BoundarySet, directory,
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     points_name, specials_name = boundary_file_names(boundary_set.k, suffix)
+    for name in (points_name, specials_name):
+        # checked for both before either is written: a pair is written whole or not at all
+        if (directory / name).exists() and not (directory / name).is_file():
+            raise WriteError(errno.EISDIR, f"cannot write {directory / name}: it exists and is "
+                                           "not a file")
     paths = []
     for frame, name in ((points, points_name), (specials, specials_name)):
         paths.append(atomic_write(directory / name,
