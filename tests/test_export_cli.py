@@ -387,3 +387,15 @@ def test_a_failed_write_names_the_target_not_its_temporary_file(tmp_path):
     with pytest.raises(WriteError, match=r"cannot write .*x\.csv: No space left on device"):
         atomic_write(tmp_path / "x.csv", write)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_an_overlay_left_from_an_earlier_run_is_pointed_out(tmp_path, capsys):
+    # new CSVs beside an old overlay of the same name looked like one current result
+    out = tmp_path / "out"
+    assert main(["trace", "-k", "1", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["trace", "-k", "1", "--out", str(out), "--no-figure"]) == 0
+    err = capsys.readouterr().err
+    assert f"{out / 'boundaries_k1.png'} is from an earlier run (not redrawn)" in err
+    assert main(["trace", "-k", "2", "--out", str(out), "--no-figure"]) == 0
+    assert "earlier run" not in capsys.readouterr().err  # another name: nothing to point out

@@ -137,12 +137,18 @@ def run(args) -> int:
             if curve.certificate is not None:
                 print(f"  {curve.name}: {certificate_line(curve.certificate)}",
                       file=sys.stdout if curve.certified else sys.stderr)
+    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
+    if failed or args.no_figure:
+        # an overlay of this name from an earlier run would now sit beside newer CSVs
+        for path in (out / f"{name}.{fmt}" for fmt in ("png", "svg")):
+            if path.is_file():
+                print(f"groove trace: note: {path} is from an earlier run (not redrawn)",
+                      file=sys.stderr)
     if failed:
         print(f"groove trace: no overlay: the boundaries of k = "
               f"{', '.join(map(k_text, failed))} failed (see above)", file=sys.stderr)
         return EXIT_FAILED
     if not args.no_figure:
-        name = args.figure or overlay_name([b.k for b in sets]) + suffix
         for path in save_overlay(sets, out / name, degrees=args.deg):
             print(f"figure: {path}")
     unproven = [c.name for b in sets for c in b.curves.values() if c.certified is False]
