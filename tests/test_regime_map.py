@@ -378,3 +378,15 @@ def test_save_rejects_bad_format_and_missing_directory(tmp_path):
         save_regime_map(1.0, tmp_path / "m.gif", formats=("gif",), boundaries=False)
     with pytest.raises(FileNotFoundError, match="does not exist"):
         save_regime_map(1.0, tmp_path / "missing" / "m.png", boundaries=False)
+
+
+def test_a_map_draws_a_failed_trace_in_part_and_warns(caplog):
+    # the overlay of a failed trace raises TraceError; the map draws what was traced, and says so
+    from matplotlib.figure import Figure
+
+    failed = trace_boundaries(1.0, gamma_min=0.5)
+    assert not failed.ok
+    ax = Figure().subplots()
+    with caplog.at_level("WARNING"):
+        artists = draw_regime_map(ax, 1.0, n=20, boundary_set=failed)
+    assert artists["boundaries"] and "drawn in part" in caplog.text

@@ -90,7 +90,9 @@ def draw_boundaries(ax, boundary_sets, degrees: bool = False, special_points: bo
     ----------
     ax : matplotlib.axes.Axes
     boundary_sets : sequence of BoundarySet or pandas.DataFrame
-        Traced boundaries (DataFrames with the CSV columns, e.g. read back from files).
+        Traced boundaries (DataFrames with the CSV columns, e.g. read back from files). A
+        failed ``BoundarySet`` raises ``TraceError``; ``b.to_frame(partial=True)`` draws what
+        it traced.
     degrees : bool
         Axes in degrees instead of radians.
     special_points : bool

@@ -221,7 +221,8 @@ def _overlay_boundaries(ax, boundary_set, degrees: bool) -> tuple[list, list]:
     """Draw the boundaries; return their artists and the ``(handle, text)`` legend entries of
     what is drawn: the line styles of the curves with a physical part and the markers of their
     special points (not the per-k colour entry)."""
-    artists = draw_boundaries(ax, [boundary_set], degrees=degrees)
+    # a failed set is drawn in part, as the caller's warning says
+    artists = draw_boundaries(ax, [boundary_set.to_frame(partial=True)], degrees=degrees)
     drawn = ax.get_legend()
     if drawn is None:
         return artists, []
