@@ -39,6 +39,20 @@ NUDGE = 1e-9
 RELIABLE = math.cos(0.1)
 
 
+#: a trial whose determinant is below this fraction of the bracket ends' is next to a
+#: branch point (where the computed tangent is noise)
+NEAR_SINGULAR = 0.1
+
+
+def _near_branch_point(det: float, det_start: float, det_end: float) -> bool:
+    """Whether a trial point with ``det [H'; t^T] = det`` is next to a branch point: the
+    determinant changes sign in the bracket, vanishes at one of its ends (a singular start),
+    or is much smaller at the trial than at both ends."""
+    if det_start == 0.0 or det_end == 0.0 or (det_start > 0.0) != (det_end > 0.0):
+        return True
+    return abs(det) <= NEAR_SINGULAR * min(abs(det_start), abs(det_end))
+
+
 class Located:
     """A located zero: its parameter, the point, and the bracket width.
 
@@ -137,6 +151,14 @@ def locate_zero(
             raise LocateError(f"trial point at s={s!r} moved {norm(result.x - point)!r}"
                               " from its prediction: it may have jumped to another branch")
         if result.tangent is not None and float(result.tangent @ border) < RELIABLE:
+            if not _near_branch_point(result.det, start.det, end.det):
+                # a regular point whose tangent the Hermite arc misses by that much: the
+                # step is too long for its arc (a sharp turn); the tangent of the arc would
+                # place a fold where the curve has none
+                raise LocateError(
+                    f"the tangent at the trial point s={s!r} is "
+                    f"{math.acos(max(-1.0, min(1.0, float(result.tangent @ border)))):.3g} rad "
+                    "from the Hermite arc's: the step is too long to locate in")
             # next to a branch point the computed null vector is noise; the
             # interpolated tangent is the branch's tangent
             result.tangent = border

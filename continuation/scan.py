@@ -1,4 +1,4 @@
-"""Bracketing the special points inside one accepted step, so that none can be missed.
+"""Bracketing the special points inside one accepted step.
 
 Every accepted step ``(a, b]`` is scanned for zeros of scalar functions along the
 curve: event functions ``g(x)``, tangent components ``t_i`` (folds) and
@@ -7,6 +7,12 @@ zeros inside one step (they cancel) and a zero at the start; the scan therefore
 models each function on the step from the data the step already has, and
 subdivides where the model allows zeros the end values do not show
 (:class:`StepScan`). Each bracket is then located by :mod:`continuation.locate`.
+
+The resolution is the step's: the models are cubic in the arclength, and the step
+control follows the curve, not the events. An event that changes on a scale shorter
+than a step (oscillating, or a dip narrower than the step between flat ends) can
+have zeros no model of the step's data shows; such an event needs ``ds_max`` below
+its own scale.
 """
 
 from __future__ import annotations
@@ -88,9 +94,12 @@ class Node:
         Event values ``g_j(x)``.
     slopes : list of float or None
         ``d g_j / ds`` along the curve, filled when first needed.
+    turning : ndarray or None
+        The curvature ``dt/ds``, filled when first needed (:meth:`StepScan.turning`).
     """
 
-    __slots__ = ("det", "events", "iterations", "residual", "s", "slopes", "tangent", "x")
+    __slots__ = ("det", "events", "iterations", "residual", "s", "slopes", "tangent",
+                 "turning", "x")
 
     def __init__(self, x, s, tangent, det, residual, iterations, events):
         self.x = x
@@ -101,6 +110,7 @@ class Node:
         self.iterations = iterations
         self.events = events
         self.slopes = None
+        self.turning = None
 
 
 def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], str]) -> float:
@@ -207,10 +217,13 @@ class StepScan:
     For each scalar function ``f`` along the step, a model ``P(u)``,
     ``u = (s - s_a) / (s_b - s_a)``, is built from the data of the interval's
     ends: for an event ``g``, the cubic Hermite interpolant of ``g`` and
-    ``dg/ds = grad g . t``; for a fold of coordinate ``i``, the derivative of the
-    cubic Hermite arc of ``x_i`` (the arc the predictor and the locator use),
-    a quadratic through ``t_i`` at both ends that also feels the chord
-    ``x_i(b) - x_i(a)``. Where the model allows zeros the end values do not show
+    ``dg/ds = grad g . t``; for a fold of coordinate ``i``, the cubic Hermite
+    interpolant of ``t_i`` and its exact slope ``dt_i/ds`` (the curvature, from
+    second derivatives of ``H``), or at a singular start the derivative of the cubic
+    Hermite arc of ``x_i``. A step where ``t_i`` keeps its sign but is not clearly
+    away from zero gets one node at the model's extremum first: a pair of folds in a
+    sharp dip of ``t_i`` can hide from any model of the ends' data alone. Where the
+    model allows zeros the end values do not show
     (:func:`_split_point`), a node is corrected onto the curve at the model's
     extremum and both halves are scanned again with their own, more accurate,
     models, until every interval has a model that either keeps its sign or
@@ -315,6 +328,12 @@ class StepScan:
             self.nodes.append(node)
             self.nodes.sort(key=lambda n: n.s)
 
+    def turning(self, node: Node) -> np.ndarray:
+        """:meth:`curvature` at a node, computed once."""
+        if node.turning is None:
+            node.turning = self.curvature(node)
+        return node.turning
+
     def curvature(self, node: Node) -> np.ndarray:
         """The curvature vector ``dt/ds`` at a node.
 
@@ -349,7 +368,7 @@ class StepScan:
         if end is not None:
             self.add(end)
             if abs(float(end.tangent[i])) <= TERMINAL_NOISE:
-                kappa = float(self.curvature(end)[i])
+                kappa = float(self.turning(end)[i])
                 before_end = -math.copysign(_TINY, kappa) if kappa != 0.0 else 0.0
 
         def value(node: Node) -> float:
@@ -360,14 +379,31 @@ class StepScan:
 
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
-            chord = (hi.x[i] - lo.x[i]) / width
             t_lo, t_hi = value(lo), value(hi)
-            # t_i on the derivative of the cubic Hermite arc of x_i, a quadratic
+            if lo.det != 0.0 and hi.det != 0.0:
+                # the cubic Hermite model of t_i from its exact slopes dt_i/ds (curvatures):
+                # the quadratic below, from the chord, can miss a pair of folds next to a
+                # nearly vanishing t_i at an end (a dip the arc's chord does not feel)
+                return _cubic(t_lo, width * float(self.turning(lo)[i]), t_hi,
+                              width * float(self.turning(hi)[i]))
+            # at a singular start (no curvature there): t_i on the derivative of the cubic
+            # Hermite arc of x_i, a quadratic
+            chord = (hi.x[i] - lo.x[i]) / width
             return (t_lo, 6.0 * chord - 4.0 * t_lo - 2.0 * t_hi,
                     -6.0 * chord + 3.0 * t_lo + 3.0 * t_hi, 0.0)
 
-        if end is None and len(self.nodes) == 2 and self._fold_clear(i):
-            return []
+        if end is None and len(self.nodes) == 2:
+            if self._fold_clear(i):
+                return []
+            a, b = self.nodes
+            if a.det != 0.0 and b.det != 0.0 and (value(a) > 0.0) == (value(b) > 0.0):
+                # not clear, yet no sign change: t_i turns towards zero inside the step, where
+                # a pair of folds can hide from any model of the ends' data (a sharp dip);
+                # one node at the model's extremum shows the turn (each half is then scanned)
+                c = model(a, b)
+                critical = _critical_points(c)
+                u = min(critical, key=lambda v: abs(_value(c, v))) if critical else 0.5
+                self.node_at(a.s + min(1.0 - SPLIT_MARGIN, max(SPLIT_MARGIN, u)) * (b.s - a.s))
         nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
         return self._brackets(value, model, 0, nodes)
 

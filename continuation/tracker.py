@@ -63,7 +63,10 @@ def trace(
     options : Options, optional
         Tolerances, step sizes and switches (default ``Options()``).
     events : sequence of Event, optional
-        Scalar functions whose zeros are located (and may stop the curve).
+        Scalar functions whose zeros are located (and may stop the curve). Their zeros
+        are found as far as the steps resolve them: an event that changes on a scale
+        shorter than ``options.ds_max`` (oscillating, a narrow dip) needs a smaller
+        ``ds_max``.
     tangent : array_like of shape (n + 1,), optional
         Initial tangent, required at a singular start (e.g. a branch point);
         it is normalised.

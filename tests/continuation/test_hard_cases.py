@@ -232,3 +232,38 @@ def test_a_wrong_length_start_is_suggested_as_the_cause():
 def test_events_that_are_not_a_sequence_are_named(events):
     with pytest.raises(TypeError, match="events must be a sequence of Event"):
         trace(axis(), [0.0, 0.0], direction=[1.0, 0.0], events=events)
+
+
+def test_a_fold_at_a_sharp_turn_is_where_the_tangent_vanishes():
+    # lambda = sqrt(u^2 + eps^2) + c u turns within ~eps: a long step's Hermite arc misses the
+    # tangent there by more than 0.1 rad, and the arc's tangent (meant for trials next to a
+    # branch point) put the fold 5e-3 from the true one, reported exact to 5e-13
+    eps, c = 0.0018477524145810527, 0.5740635524262185
+    problem = Problem(lambda x: np.array([x[0] - np.sqrt(x[1] ** 2 + eps ** 2) - c * x[1]]),
+                      lambda x: np.array([[1.0, -x[1] / np.sqrt(x[1] ** 2 + eps ** 2) - c]]))
+    u0 = -2.8995896075646126
+    curve = trace(problem, [np.sqrt(u0 ** 2 + eps ** 2) + c * u0, u0], direction=[0.0, 1.0],
+                  options=Options(fold_coordinates=(0,)), events=box_events(upper={1: 5.0}))
+    assert curve.ok
+    (fold,) = curve.special("fold")
+    assert fold.x[1] == pytest.approx(-c * eps / np.sqrt(1.0 - c * c), abs=1e-11)
+
+
+@pytest.mark.parametrize("e, scale, u0", [
+    (5e-4, 0.18, -1.78),                                              # one end nearly a fold
+    (5.455079200777126e-05, 0.11414066900906675, -1.8898619914824868),  # a dip inside
+])
+def test_a_pair_of_close_folds_inside_one_step_is_found(e, scale, u0):
+    # lambda/S = (u/S)^3 - e u/S: folds at u = -+S sqrt(e/3), lambda = +-2 S (e/3)^1.5. Both
+    # inside one step, t_lambda dips below zero between ends of one sign: the chord's model
+    # (and a cubic of the ends' slopes) missed the pair, status ok
+    problem = Problem(lambda x: np.array([x[0] / scale - (x[1] / scale) ** 3 + e * x[1] / scale]),
+                      lambda x: np.array([[1.0 / scale, -3.0 * x[1] ** 2 / scale ** 3
+                                           + e / scale]]))
+    start = [scale * (u0 ** 3 - e * u0), u0 * scale]
+    curve = trace(problem, start, direction=[0.0, 1.0], options=Options(fold_coordinates=(0,)),
+                  events=box_events(upper={1: 2.0 * scale}))
+    assert curve.ok
+    folds = sorted(p.x[1] for p in curve.special("fold"))
+    expected = scale * np.sqrt(e / 3.0)
+    assert folds == pytest.approx([-expected, expected], abs=1e-10)
