@@ -37,6 +37,9 @@ PREDICTOR_NODES = 3
 #: a closing point must lie this close (relative to 1 + max|x0|) to the start
 CLOSE_TOLERANCE = 1e-6
 
+#: at a singular start, the step's arc must pass this close to it (relative to the chord)
+ARC_CLOSE = 1e-3
+
 
 def trace(
     problem: Problem,
@@ -474,12 +477,20 @@ def _closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
             break
         sigma = min(h, max(0.0, sigma - float(t0 @ (p - x0)) / slope))
     p, _ = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
+    scale = CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
+    angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
+    if start.det == 0.0:
+        # a singular start (a branch point): H' vanishes in a direction at x0, so no Newton
+        # converges there to show that the curve is back; it is when the step's arc, whose
+        # error is far below this bound, passes through the start with the start's tangent
+        if float(np.linalg.norm(p - x0)) > max(scale, ARC_CLOSE * float(np.linalg.norm(chord))):
+            return None
+        return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
+                    start.residual, 0, start.events)
     p = p - t0 * float(t0 @ (p - x0))
     options = run.options
     correction = correct(run.evaluator, p, t0, options.newton, need_tangent=False)
-    scale = CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
     if not correction.ok or float(np.max(np.abs(correction.x - x0))) > scale:
         return None
-    angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
     return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
                 start.residual, correction.iterations, start.events)

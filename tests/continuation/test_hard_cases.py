@@ -267,3 +267,27 @@ def test_a_pair_of_close_folds_inside_one_step_is_found(e, scale, u0):
     folds = sorted(p.x[1] for p in curve.special("fold"))
     expected = scale * np.sqrt(e / 3.0)
     assert folds == pytest.approx([-expected, expected], abs=1e-10)
+
+
+@pytest.mark.parametrize("direction", [1, -1])
+def test_a_loop_switched_onto_at_a_branch_point_closes_after_one_lap(direction):
+    # u ((lambda - 1)^2 + (u - 1/2)^2 - 5/4) = 0: the line u = 0 and a circle through the
+    # branch points (0, 0) and (2, 0). Switched onto at (0, 0), the circle went round 6 or 61
+    # times before closing (no Newton converges at the singular start to show it is back)
+    from continuation import switch_branch
+
+    def residual(x):
+        return np.array([x[1] * ((x[0] - 1.0) ** 2 + (x[1] - 0.5) ** 2 - 1.25)])
+
+    def jacobian(x):
+        circle = (x[0] - 1.0) ** 2 + (x[1] - 0.5) ** 2 - 1.25
+        return np.array([[2.0 * x[1] * (x[0] - 1.0), circle + 2.0 * x[1] * (x[1] - 0.5)]])
+
+    problem = Problem(residual, jacobian)
+    line = trace(problem, [-1.0, 0.0], direction=[1.0, 0.0], options=Options(max_steps=20))
+    branch = line.special("branch_point")[0]
+    loop = switch_branch(problem, branch, direction=direction,
+                         options=Options(fold_coordinates=(0,), max_steps=3000))
+    assert loop.status is Status.CLOSED
+    assert loop.s[-1] == pytest.approx(2.0 * np.pi * np.sqrt(1.25), rel=1e-6)
+    assert len(loop.special("fold")) == 2
