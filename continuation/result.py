@@ -98,7 +98,11 @@ class SpecialPoint:
         Width in arclength of the final root bracket (0 if the located
         function vanished exactly at a corrected point; for start and end
         points, the Newton tolerance; for a branch point passed to
-        ``switch_branch``, the accuracy of its location).
+        ``switch_branch``, the accuracy of its location). It bounds the error
+        of the zero along the curve's own arc, not that of ``x``: folds and
+        events are exact to it and to the Newton tolerance, a branch point
+        (located on a Hermite arc across the singular point) to about
+        ``1e-11`` relative to the scale of ``x``.
     coordinate : int or None
         The coordinate of a fold, else ``None``.
     tangent : ndarray, shape (n + 1,) or None
