@@ -52,6 +52,8 @@ class Correction:
         ``det [H'(x); b^T]`` for the border row ``b`` (0 when unknown); same
         sign as ``det``, and well defined even where the tangent is not (at a
         branch point it vanishes).
+    jacobian : ndarray or None
+        ``H'(x)`` where the tangent was computed from it (else ``None``).
     """
 
     __slots__ = (
@@ -60,6 +62,7 @@ class Correction:
         "det",
         "first_correction",
         "iterations",
+        "jacobian",
         "ok",
         "reason",
         "residual",
@@ -79,6 +82,7 @@ class Correction:
         self.iterations = iterations
         self.first_correction = first_correction
         self.contraction = contraction
+        self.jacobian = None
 
 
 def correct(
@@ -236,6 +240,7 @@ def correct(
             within = _with_tangent(factors, x, rnorm, k, first, contraction)
             if within is None:
                 return failure(SINGULAR, rnorm, k)
+            within.jacobian = J
             if small:
                 return within
             fallback = within

@@ -36,14 +36,15 @@ class Run:
         self.special: list[SpecialPoint] = []
         self.rejected = 0
 
-    def node(self, x, s, tangent, det, residual, iterations) -> Node:
-        """A curve point with its event values; :class:`EventNotFinite` if one is not finite."""
+    def node(self, x, s, tangent, det, residual, iterations, jacobian=None) -> Node:
+        """A curve point with its event values; :class:`EventNotFinite` if one is not finite.
+        ``jacobian``: ``H'(x)`` if already evaluated there."""
         values = [event_value(event, x, self.problem.describe) for event in self.events]
         for event, value in zip(self.events, values, strict=True):
             if not math.isfinite(value):
                 raise EventNotFinite(f"event '{event.name}' is {value!r} at "
                                      f"x={self.problem.describe(x)}")
-        return Node(x, s, tangent, det, residual, iterations, values)
+        return Node(x, s, tangent, det, residual, iterations, values, jacobian)
 
     def append(self, x, s, tangent, residual, iterations) -> int:
         self.x.append(x)

@@ -136,7 +136,7 @@ def _located_node(run: Run, located: Located) -> Node:
         return located.node
     c = cast(Correction, located.correction)  # a Located without a node carries its correction
     return Node(c.x, located.s, c.tangent, c.det, c.residual, c.iterations,
-                [event_value(e, c.x, run.problem.describe) for e in run.events])
+                [event_value(e, c.x, run.problem.describe) for e in run.events], c.jacobian)
 
 
 def add_step(run: Run, a: Node, b: Node, found: list[Found]) -> SpecialPoint | None:

@@ -273,7 +273,7 @@ class _Stepper:
         run, point = self.run, self.point
         new = run.node(correction.x, point.s + arc_length(correction.x - point.x, alpha),
                        correction.tangent, correction.det, correction.residual,
-                       correction.iterations)
+                       correction.iterations, correction.jacobian)
         if truncated and new.s != run.options.max_arclength:
             new = _point_at_arclength(run, point, new, run.options.max_arclength)
         closing = None
@@ -380,7 +380,8 @@ def _start(run: Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
             raise ValueError("direction is orthogonal to the tangent at the start; "
                              "it cannot choose an orientation")
         sign = 1 if dot > 0 else -1
-    point = run.node(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations)
+    point = run.node(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations,
+                     correction.jacobian if correction.ok else None)
     return point, None, ""
 
 
@@ -449,7 +450,7 @@ def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:
         logger.debug("could not move the last point to s=%.12g: %s", s, correction.reason)
         return b
     return run.node(correction.x, s, correction.tangent, correction.det, correction.residual,
-                    correction.iterations)
+                    correction.iterations, correction.jacobian)
 
 
 def _closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
