@@ -175,19 +175,17 @@ def atomic_write(path, write) -> Path:
     directory removes it (:func:`remove_stale_temporaries`).
     """
     path = Path(path)
+    tmp = None
     try:
         remove_stale_temporaries(path.parent)
         tmp = create_temporary(path)
-    except OSError as exc:
-        raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
-    try:
         write(tmp)
         commit_temporary(tmp, path)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
-    except BaseException:
-        tmp.unlink(missing_ok=True)
+    except BaseException as exc:
+        if tmp is not None:
+            tmp.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
+            raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
         raise
     return path
 

@@ -114,7 +114,8 @@ def read_boundaries_csv(path) -> pd.DataFrame:
             raise ValueError(f"{path}: column {column} = {shown!r} in data row "
                              f"{row + 1} is not a {'finite ' if finite_required else ''}number")
         frame[column] = values.astype(float)
-    for column, name in (("k", "friction coefficient k"), ("compliance", "compliance ratio")):
+    for column, name, traced in (("k", "friction coefficient k", check_traced_friction),
+                                 ("compliance", "compliance ratio", check_traced_ratio)):
         bad = ~(frame[column] > 0)
         if bad.any():
             row = int(np.flatnonzero(bad.to_numpy())[0])
@@ -126,9 +127,8 @@ def read_boundaries_csv(path) -> pd.DataFrame:
                 f"{path}: column {column} holds {len(values)} values ("
                 f"{', '.join(map(k_text, values[:3]))}{', ...' if len(values) > 3 else ''}); "
                 f"a boundaries CSV holds one {column}, as groove trace writes it")
-    for check in (check_traced_friction, check_traced_ratio):
         try:
-            check(float(frame["k" if check is check_traced_friction else "compliance"].iloc[0]))
+            traced(float(values[0]))  # the range the boundaries are traced for
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
     _check_domain_rows(path, frame)
