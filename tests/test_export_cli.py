@@ -399,3 +399,47 @@ def test_an_overlay_left_from_an_earlier_run_is_pointed_out(tmp_path, capsys):
     assert f"{out / 'boundaries_k1.png'} is from an earlier run (not redrawn)" in err
     assert main(["trace", "-k", "2", "--out", str(out), "--no-figure"]) == 0
     assert "earlier run" not in capsys.readouterr().err  # another name: nothing to point out
+
+
+def test_a_disk_that_fills_between_the_two_csvs_of_a_k_leaves_both_as_they_were(written,
+                                                                                 tmp_path,
+                                                                                 monkeypatch):
+    # the first CSV used to be moved into place before the second was written: a full disk
+    # then left a new boundaries file beside the special points of an earlier run
+    from groove_model.io.atomic import WriteError
+
+    out, sets = written
+    for name in boundary_file_names(1.0):
+        (tmp_path / name).write_text("earlier run")
+    to_csv = pd.DataFrame.to_csv
+
+    def fills_on_the_second(frame, path, *args, **kwargs):
+        if "special_points" in str(path):
+            raise OSError(28, "No space left on device")
+        return to_csv(frame, path, *args, **kwargs)
+
+    monkeypatch.setattr(pd.DataFrame, "to_csv", fills_on_the_second)
+    with pytest.raises(WriteError, match=r"cannot write .*special_points_k1\.csv: No space"):
+        write_boundary_set(sets[1.0], tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(boundary_file_names(1.0))
+    assert all((tmp_path / n).read_text() == "earlier run" for n in boundary_file_names(1.0))
+
+
+def test_atomic_write_all_moves_the_files_only_when_every_one_was_written(tmp_path):
+    from groove_model.io.atomic import atomic_write_all
+
+    (tmp_path / "a.txt").write_text("old a")
+
+    def broken(tmp):
+        Path(tmp).write_text("half")
+        raise RuntimeError("writer failed")
+
+    with pytest.raises(RuntimeError, match="writer failed"):
+        atomic_write_all([(tmp_path / "a.txt", lambda tmp: Path(tmp).write_text("new a")),
+                          (tmp_path / "b.txt", broken)])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+    assert (tmp_path / "a.txt").read_text() == "old a"
+    paths = atomic_write_all([(tmp_path / "a.txt", lambda tmp: Path(tmp).write_text("new a")),
+                              (tmp_path / "b.txt", lambda tmp: Path(tmp).write_text("new b"))])
+    assert paths == [tmp_path / "a.txt", tmp_path / "b.txt"]
+    assert [p.read_text() for p in paths] == ["new a", "new b"]

@@ -61,7 +61,7 @@ def run(args) -> int:
     # Imported here, not at the top: the audit loads scipy and the solver, which
     # `groove --help` and the other commands' start-up should not wait for.
     from ..analysis.audit.run import run_audit
-    from ..io.export import atomic_write
+    from ..io.atomic import atomic_write_all
 
     ks = tuple(args.ks) if args.ks else DEFAULT_KS
     out = output_directory(args.out) if args.out else None
@@ -71,13 +71,18 @@ def run(args) -> int:
         print(f"groove audit: error: computation failed: {type(exc).__name__}: {exc}",
               file=sys.stderr)
         return EXIT_FAILED
-    print(report.to_json() if args.json else _summary(report))
+    paths = []
     if out is not None:
+        # written (both or neither) before the report is printed: a failed write is reported
+        # alone
         out.mkdir(parents=True, exist_ok=True)
-        for name, text in (("claims.md", report.to_markdown()), ("claims.json", report.to_json())):
-            path = atomic_write(out / name,
-                                lambda tmp, t=text: Path(tmp).write_text(t, encoding="utf-8"))
-            print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
+        markdown, json_text = report.to_markdown(), report.to_json()
+        paths = atomic_write_all([
+            (out / "claims.md", lambda tmp: Path(tmp).write_text(markdown, encoding="utf-8")),
+            (out / "claims.json", lambda tmp: Path(tmp).write_text(json_text, encoding="utf-8"))])
+    print(report.to_json() if args.json else _summary(report))
+    for path in paths:
+        print(f"wrote {path}", file=sys.stderr if args.json else sys.stdout)
     return EXIT_OK
 
 

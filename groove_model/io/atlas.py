@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 from ..model.parameters import k_text
 from ..tracing.atlas import ATLAS_COLUMNS, THRESHOLD_COLUMNS, Atlas
 from ..tracing.topology import format_table, thresholds_from_atlas
-from .atomic import atomic_write
+from .atomic import atomic_write_all
 
 if TYPE_CHECKING:  # reading back is the only use of pandas here
     import pandas as pd
@@ -37,13 +37,14 @@ def _cell(value) -> str:
     return str(value)
 
 
-def _csv(columns, rows, path: Path) -> Path:
+def _csv(columns, rows, path: Path):
+    """``(path, write)`` for :func:`atomic_write_all`: a CSV of ``columns`` and ``rows``."""
     def write(tmp):
         with open(tmp, "w", newline="", encoding="utf-8") as handle:
             writer = csv.writer(handle, lineterminator="\n")
             writer.writerow(columns)
             writer.writerows([_cell(v) for v in row] for row in rows)
-    return atomic_write(path, write)
+    return path, write
 
 
 #: the curves of the paper's special points: each gets its file, with no rows where the curve
@@ -55,19 +56,20 @@ def write_atlas(atlas: Atlas, directory, stem: str = "atlas") -> list[Path]:
     """Write the CSV files and the report of ``atlas`` into ``directory`` (created if needed).
 
     One CSV per curve; a curve of :data:`STANDARD_CURVES` that does not exist in the range gets
-    a file with the header only.
+    a file with the header only. All are written before any is moved into place, so a failed
+    write (a full disk) leaves the files of an earlier run as they were.
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     names = [*atlas.curves, *(n for n in STANDARD_CURVES if n not in atlas.curves)]
-    paths = [_csv(ATLAS_COLUMNS, atlas.curve_table(name) if name in atlas.curves else [],
+    files = [_csv(ATLAS_COLUMNS, atlas.curve_table(name) if name in atlas.curves else [],
                   directory / f"{stem}_{name}.csv") for name in names]
-    paths.append(_csv(THRESHOLD_COLUMNS, atlas.thresholds_table(),
+    files.append(_csv(THRESHOLD_COLUMNS, atlas.thresholds_table(),
                       directory / f"{stem}_thresholds.csv"))
     report = atlas_report(atlas)
-    paths.append(atomic_write(directory / f"{stem}.md",
-                              lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
-    return paths
+    files.append((directory / f"{stem}.md",
+                  lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
+    return atomic_write_all(files)
 
 
 def _range_text(atlas: Atlas) -> str:

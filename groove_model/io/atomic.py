@@ -14,9 +14,11 @@ import os
 import re
 import secrets
 import socket
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
-__all__ = ["WriteError", "atomic_write", "commit_temporary", "create_temporary",
+__all__ = ["WriteError", "atomic_write", "atomic_write_all", "commit_temporary", "create_temporary",
            "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
@@ -174,20 +176,38 @@ def atomic_write(path, write) -> Path:
     exception removes it; a writer killed outright cannot, and the next call in the same
     directory removes it (:func:`remove_stale_temporaries`).
     """
-    path = Path(path)
-    tmp = None
+    return atomic_write_all([(path, write)])[0]
+
+
+def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> list[Path]:
+    """:func:`atomic_write` for files that belong together, e.g. the two CSVs of one ``k``.
+
+    Every file is written to its temporary first; only when all were written are they moved
+    into place, so a full disk or a failed writer leaves none of them changed (the moves
+    themselves need no space). Returns the paths, in order.
+
+    Raises
+    ------
+    WriteError
+        Naming the file that could not be written; no temporary is left.
+    """
+    temporaries: list[tuple[Path, Path]] = []
+    current = None
     try:
-        remove_stale_temporaries(path.parent)
-        tmp = create_temporary(path)
-        write(tmp)
-        commit_temporary(tmp, path)
+        for target, write in files:
+            current = Path(target)
+            remove_stale_temporaries(current.parent)
+            temporaries.append((create_temporary(current), current))
+            write(temporaries[-1][0])
+        for tmp, current in temporaries:
+            commit_temporary(tmp, current)
     except BaseException as exc:
-        if tmp is not None:
+        for tmp, _ in temporaries:
             tmp.unlink(missing_ok=True)
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
-            raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
+            raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc
         raise
-    return path
+    return [path for _, path in temporaries]
 
 
 def commit_temporary(tmp: Path, path: Path) -> None:

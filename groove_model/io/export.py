@@ -11,7 +11,7 @@ import pandas as pd
 from ..model.boundaries import BOUNDARY_NAMES
 from ..model.parameters import check_traced_friction, check_traced_ratio, k_text
 from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
-from .atomic import WriteError, atomic_write, remove_stale_temporaries
+from .atomic import WriteError, atomic_write, atomic_write_all, remove_stale_temporaries
 
 __all__ = [
     "atomic_write",
@@ -54,12 +54,17 @@ def write_boundary_set(boundary_set: BoundarySet, directory,
         if (directory / name).exists() and not (directory / name).is_file():
             raise WriteError(errno.EISDIR, f"cannot write {directory / name}: it exists and is "
                                            "not a file")
-    paths = []
-    for frame, name in ((points, points_name), (specials, specials_name)):
-        paths.append(atomic_write(directory / name,
-                                  lambda tmp, f=frame: f.to_csv(tmp, index=False,
-                                                                float_format="%.17g")))
+    # both written before either is moved into place: a full disk leaves neither changed
+    paths = atomic_write_all([(directory / points_name, _csv_writer(points)),
+                              (directory / specials_name, _csv_writer(specials))])
     return paths[0], paths[1]
+
+
+def _csv_writer(frame: pd.DataFrame):
+    """``write(tmp)`` of :func:`atomic_write_all`: ``frame`` as CSV, floats to 17 digits."""
+    def write(tmp) -> None:
+        frame.to_csv(tmp, index=False, float_format="%.17g")
+    return write
 
 
 def read_boundaries_csv(path) -> pd.DataFrame:
