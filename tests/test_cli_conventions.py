@@ -4,6 +4,7 @@ import importlib.metadata
 import logging
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -196,3 +197,42 @@ def test_ctrl_c_ends_with_a_line_and_exit_code_130_not_a_traceback(monkeypatch, 
     monkeypatch.setattr(solve, "run", interrupted)
     assert main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1"]) == 130
     assert capsys.readouterr().err == "groove solve: interrupted\n"
+
+
+@pytest.mark.parametrize("argv", [
+    ["trace", "-k", "1", "--out", "DIR/o"],
+    ["map", "-k", "1", "-o", "DIR/o/m.png", "--no-boundaries", "--resolution", "20"],
+    ["plot", "RESULTS/boundaries_k1.csv", "-o", "DIR/o/p.png"],
+    ["atlas", "--k-min", "1", "--k-max", "2", "--out", "DIR/o"],
+])
+def test_an_unknown_mplbackend_is_a_usage_error_before_anything_is_written(argv, tmp_path,
+                                                                           monkeypatch, capsys):
+    for name in [m for m in sys.modules if m == "matplotlib" or m.startswith("matplotlib.")]:
+        monkeypatch.delitem(sys.modules, name)  # so that matplotlib reads MPLBACKEND again
+    monkeypatch.setenv("MPLBACKEND", "no-such-backend")
+    results = Path(__file__).resolve().parents[1] / "results"
+    argv = [a.replace("DIR", str(tmp_path)).replace("RESULTS", str(results)) for a in argv]
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert "MPLBACKEND = 'no-such-backend' is not a backend matplotlib knows" in \
+        capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_unwritable_out_directory_is_refused_before_anything_is_computed(tmp_path,
+                                                                            monkeypatch, capsys):
+    import os
+
+    from groove_model.analysis.audit import run as audit_run
+
+    # root may write anywhere, so the directory's permission is stood in for by os.access
+    monkeypatch.setattr(os, "access", lambda path, mode: Path(path) != tmp_path)
+    monkeypatch.setattr(audit_run, "run_audit", lambda *a, **k: pytest.fail("audit ran"))
+    with pytest.raises(SystemExit) as exit_info:
+        main(["audit", "-k", "1", "--out", str(tmp_path / "new")])
+    assert exit_info.value.code == 2
+    captured = capsys.readouterr()
+    assert f"--out {tmp_path / 'new'} cannot be written: {tmp_path} is not writable" in \
+        captured.err
+    assert captured.out == ""

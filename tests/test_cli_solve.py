@@ -100,6 +100,8 @@ def test_solve_readable(capsys):
         (["-k", "nan"], "friction coefficient k = nan is outside the allowed range"),
         (["-k", "inf"], "friction coefficient k = inf is outside the allowed range"),
         (["-k", "abc"], "friction coefficient k = 'abc' is not a number; k must be finite and > 0"),
+        # Python's float() reads digit separators: "1_0" is 10, a typo a tool should not take
+        (["-k", "1_0"], "friction coefficient k = '1_0' is not a number"),
     ],
 )
 def test_solve_bad_friction(argv, message, capsys):
@@ -118,6 +120,10 @@ def test_solve_bad_friction(argv, message, capsys):
         (["--gamma", "0.5", "--delta", "-0.1"], "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma"),
         (["--gamma", "x", "--delta", "0.1"], "gamma = 'x' is not a number"),
         (["--gamma", "0.5", "--delta", "0.1", "--radius", "0.01"], "dimensional results need all of"),
+        (["--gamma", "0_5", "--delta", "0.1"], "gamma = '0_5' is not a number"),
+        # --g alone used to be ignored without a word
+        (["--gamma", "0.5", "--delta", "0.1", "--g", "3"],
+         "--g 3.0 is used only for the dimensional results"),
         (["--gamma", "0.5", "--delta", "0.1", "--radius", "-1", "--young", "1e9", "--poisson", "0.3",
           "--mass", "1"], "radius R = -1.0 m is outside the allowed range"),
     ],

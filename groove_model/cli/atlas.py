@@ -14,6 +14,7 @@ from .common import (
     compliance_label,
     computation_errors,
     output_directory,
+    require_plotting,
     traced_friction,
 )
 
@@ -70,6 +71,8 @@ def run(args) -> int:
                          f"{k_text(args.k_max)}")
     out = output_directory(args.out)
     compliance = compliance_from(args)
+    if not args.no_figure:
+        require_plotting()
     try:
         atlas = trace_atlas((args.k_min, args.k_max), compliance=compliance)
     except computation_errors() as exc:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -95,10 +96,23 @@ def add_command(subparsers, name: str, help: str, description: str,
     return parser
 
 
+def _float(text: str) -> float:
+    """``float(text)`` without Python's digit separators: ``1_0`` is a typo, not 10.
+
+    Raises
+    ------
+    ValueError
+        If ``text`` is not a number written the usual way.
+    """
+    if "_" in text:
+        raise ValueError(f"{text!r} is not a number")
+    return float(text)
+
+
 def _number(text: str, message: str) -> float:
     """``float(text)``, or argparse's error with ``message`` if it is not a number."""
     try:
-        return float(text)
+        return _float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(message) from None
 
@@ -137,6 +151,20 @@ def require_certify_extra() -> None:
         require_flint()
     except ImportError as exc:
         raise UsageError(str(exc)) from None
+
+
+def require_plotting() -> None:
+    """Load matplotlib before anything is computed or written: a :class:`UsageError` if the
+    environment variable ``MPLBACKEND`` names a backend matplotlib does not know (matplotlib
+    refuses to load then), instead of a traceback after the CSVs are written."""
+    try:
+        import matplotlib  # noqa: F401
+    except ValueError as exc:
+        backend = os.environ.get("MPLBACKEND")
+        if backend is None:
+            raise
+        raise UsageError(f"the environment variable MPLBACKEND = {backend!r} is not a backend "
+                         f"matplotlib knows ({exc}); unset it or set MPLBACKEND=Agg") from None
 
 
 def friction(text: str) -> float:
@@ -197,7 +225,7 @@ def real(name: str, allowed: str = "a finite number"):
     """Argument type of a finite real number; messages name it ``name`` with range ``allowed``."""
     def parse(text: str) -> float:
         try:
-            value = float(text)
+            value = _float(text)
         except ValueError:
             raise argparse.ArgumentTypeError(
                 f"{name} = {text!r} is not a number; allowed range: {allowed}") from None
@@ -216,22 +244,25 @@ def output_directory(text: str) -> Path:
     Raises
     ------
     UsageError
-        If it exists and is not a directory.
+        If it exists and is not a directory, or it (or the directory it would be created in)
+        is not writable: checked before anything is computed.
     """
     out = Path(text)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
-    blocking = _file_ancestor(out)
-    if blocking is not None:
-        raise UsageError(f"--out {out} cannot be created: {blocking} is a file, not a directory")
+    existing = out if out.exists() else _existing_ancestor(out)
+    if existing is not None and not existing.is_dir():
+        raise UsageError(f"--out {out} cannot be created: {existing} is a file, not a directory")
+    if existing is not None and not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"--out {out} cannot be written: {existing} is not writable")
     return out
 
 
-def _file_ancestor(path: Path) -> Path | None:
-    """The first existing ancestor of ``path`` that is not a directory, or ``None``."""
+def _existing_ancestor(path: Path) -> Path | None:
+    """The nearest existing ancestor of ``path``, or ``None``."""
     for parent in path.parents:
         if parent.exists():
-            return None if parent.is_dir() else parent
+            return parent
     return None
 
 
@@ -271,7 +302,7 @@ def _ratio(text: str) -> float:
     from ..model.parameters import Compliance
 
     try:
-        return Compliance(float(text)).ratio
+        return Compliance(_float(text)).ratio
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"compliance ratio = {text!r} is outside the allowed range: finite and > 0"

@@ -11,6 +11,7 @@ from .common import (
     add_command,
     computation_errors,
     output_directory,
+    require_plotting,
     traced_friction,
     traced_poisson,
 )
@@ -58,6 +59,8 @@ def run(args) -> int:
 
     out = output_directory(args.out)
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
+    if not args.no_figure:
+        require_plotting()
     try:
         study = compliance_study(tuple(dict.fromkeys(args.poissons)), ks)
     except computation_errors() as exc:

@@ -16,6 +16,7 @@ from .common import (
     computation_errors,
     figure_target,
     one_friction,
+    require_plotting,
 )
 
 __all__ = ["add_parser", "run"]
@@ -79,6 +80,8 @@ def run(args) -> int:
     # Imported here, not at the top: the tracer and the map load the engine, scipy and
     # matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..model.parameters import Parameters, k_text
+
+    require_plotting()
     from ..plots.regime_map import save_regime_map
     from ..tracing import trace_boundaries
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from .common import EXIT_OK, UsageError, add_command, figure_target
+from .common import EXIT_OK, UsageError, add_command, figure_target, require_plotting
 
 __all__ = ["add_parser", "run"]
 
@@ -35,6 +35,8 @@ def run(args) -> int:
     # `groove --help` and `groove solve` should not wait for.
     from ..io.export import read_boundaries_csv
     from ..model.parameters import k_text
+
+    require_plotting()
     from ..plots.overlay import save_overlay
 
     frames = []

@@ -58,7 +58,7 @@ def add_parser(subparsers):
     dim.add_argument("--radius", type=real("radius R"), help="ball radius R in m")
     dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
     dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
-    dim.add_argument("--g", type=real("g"), default=9.81, help="gravity in m/s^2 (default 9.81)")
+    dim.add_argument("--g", type=real("g"), help="gravity in m/s^2 (default 9.81)")
     add_compliance_options(p, poisson_help="also the nu of the SI results", traced=False)
     p.set_defaults(run=run)
     return p
@@ -131,11 +131,15 @@ def _dimensional(args, eq):
     from ..model.dimensional import dimensional_state
 
     if all(v is None for v in (args.radius, args.young, args.mass)):
+        if args.g is not None:
+            raise UsageError(f"--g {args.g!r} is used only for the dimensional results: give "
+                             "--radius, --young, --poisson and --mass too")
         return None
     if any(v is None for v in (args.radius, args.young, args.poisson, args.mass)):
         raise UsageError("dimensional results need all of --radius, --young, --poisson, --mass")
+    gravity = {} if args.g is None else {"g": args.g}  # else dimensional_state's default
     try:
-        return dimensional_state(eq, args.radius, args.young, args.poisson, args.mass, args.g)
+        return dimensional_state(eq, args.radius, args.young, args.poisson, args.mass, **gravity)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
 

@@ -17,6 +17,7 @@ from .common import (
     compliance_label,
     output_directory,
     require_certify_extra,
+    require_plotting,
 )
 
 __all__ = ["add_parser", "run"]
@@ -97,7 +98,6 @@ def run(args) -> int:
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.export import write_boundary_set
     from ..model.parameters import Parameters, k_text
-    from ..plots.overlay import save_overlay
     from ..tracing import trace_boundaries
 
     out = output_directory(args.out)
@@ -112,6 +112,8 @@ def run(args) -> int:
                          "plot -o NAME.pdf draws a PDF from the CSVs)")
     if args.certify:
         require_certify_extra()
+    if not args.no_figure:
+        require_plotting()
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
     sets, failed = [], []
@@ -149,6 +151,9 @@ def run(args) -> int:
               f"{', '.join(map(k_text, failed))} failed (see above)", file=sys.stderr)
         return EXIT_FAILED
     if not args.no_figure:
+        # Imported here: matplotlib is needed for the figure only (loaded by require_plotting).
+        from ..plots.overlay import save_overlay
+
         for path in save_overlay(sets, out / name, degrees=args.deg):
             print(f"figure: {path}")
     unproven = [c.name for b in sets for c in b.curves.values() if c.certified is False]
