@@ -106,6 +106,24 @@ def test_what_is_not_an_iterable_of_numbers_is_rejected(bad):
         trace_many(bad)
 
 
+@pytest.mark.parametrize("call", [
+    lambda: trace_many([1.0], certify="no"),
+    lambda: trace_many([1.0], keep_unphysical=1),
+    lambda: trace_boundaries(1.0, certify="no"),
+    lambda: trace_boundaries(1.0, keep_unphysical="yes"),
+    lambda: trace_boundaries(1.0, raise_on_failure=None),
+    lambda: trace_boundaries(0.5).to_frame(partial="no"),
+    lambda: trace_boundaries(0.5).curves["dr_limit"].to_frame(partial=1),
+])
+def test_a_flag_that_is_not_a_bool_is_refused(call, monkeypatch):
+    # certify="no" used to read as true (and certified): a flag must be True or False
+    import groove_model.tracing.sweep as sweep
+
+    monkeypatch.setattr(sweep, "_trace_chunk", lambda *args: pytest.fail("traced"))
+    with pytest.raises(TypeError, match="must be True or False, got"):
+        call()
+
+
 def test_every_k_is_checked_before_any_is_traced(monkeypatch):
     import groove_model.tracing.sweep as sweep
 

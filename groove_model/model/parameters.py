@@ -21,6 +21,7 @@ __all__ = [
     "Compliance",
     "Parameters",
     "check_domain",
+    "check_flag",
     "check_friction",
     "check_poisson",
     "check_traced",
@@ -40,6 +41,20 @@ def _check_real(name: str, value: object) -> float:
         raise TypeError(f"{name} must be a real number, got {value!r} of type "
                         f"{type(value).__name__}")
     return float(value)
+
+
+def check_flag(name: str, value: object) -> bool:
+    """``value`` as a bool if it is one (Python's or numpy's).
+
+    Raises
+    ------
+    TypeError
+        Naming the flag, for anything else: ``certify="no"`` would otherwise read as true.
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {value!r} of type "
+                        f"{type(value).__name__}")
+    return bool(value)
 
 
 def check_friction(k: object) -> float:

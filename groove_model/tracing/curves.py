@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..model.parameters import Parameters
+from ..model.parameters import Parameters, check_flag
 
 if TYPE_CHECKING:  # pandas is imported where a table is made: `groove atlas` needs none
     import pandas as pd
@@ -206,7 +206,7 @@ class BoundaryCurve:
         """
         import pandas as pd  # only the tables need it, not the tracer
 
-        if not self.ok and not partial:
+        if not check_flag("partial", partial) and not self.ok:
             raise TraceError(f"{self.name} for k = {self.k!r} failed ({self.status}): its rows "
                              "are not a whole boundary; to_frame(partial=True) gives them "
                              "for inspection", None)
@@ -261,7 +261,7 @@ class BoundarySet:
         return tuple(f"{c.name}: {c.status}" for c in self.curves.values() if not c.ok)
 
     def _require_ok(self, partial: bool, what: str) -> None:
-        if not self.ok and not partial:
+        if not check_flag("partial", partial) and not self.ok:
             raise TraceError(f"k = {self.k!r}: {'; '.join(self.failures)}: the {what} of a "
                              "failed trace are not whole boundaries; pass partial=True to "
                              "get them for inspection", self)

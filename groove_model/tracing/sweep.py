@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 from continuation import Options
 
-from ..model.parameters import Compliance, Parameters, check_traced
+from ..model.parameters import Compliance, Parameters, check_flag, check_traced
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
 
@@ -177,7 +177,7 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
         or an integer >= 1, or both ``jobs`` and ``executor`` are given.
     TypeError
         When called: if ``ks`` is a string or not iterable, a ``k`` or the compliance is not
-        a real number, or ``executor`` is not an Executor.
+        a real number, a flag not a bool, or ``executor`` is not an Executor.
 
     Notes
     -----
@@ -185,6 +185,8 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     does not grow with the number of ``k`` when the results are consumed as they come.
     """
     values, checked = _check_ks(ks, compliance)
+    keep_unphysical = check_flag("keep_unphysical", keep_unphysical)
+    certify = check_flag("certify", certify)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise ValueError(f"jobs = {jobs!r} is outside the allowed range: None or an integer "
                          ">= 1")

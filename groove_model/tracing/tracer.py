@@ -58,7 +58,7 @@ from ..model.boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from ..model.parameters import Parameters, check_traced, k_text
+from ..model.parameters import Parameters, check_flag, check_traced, k_text
 from .assembly import (
     Role,
     Tagged,
@@ -334,6 +334,8 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     ------
     ValueError
         If ``k`` or the compliance ratio is outside the traced ranges (the message names it).
+    TypeError
+        If a flag (``keep_unphysical``, ``raise_on_failure``, ``certify``) is not a bool.
     ImportError
         With ``certify=True`` if python-flint is not installed (before anything is traced).
 
@@ -344,6 +346,9 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     """
     params = Parameters.coerce(k)
     check_traced(params)
+    keep_unphysical = check_flag("keep_unphysical", keep_unphysical)
+    raise_on_failure = check_flag("raise_on_failure", raise_on_failure)
+    certify = check_flag("certify", certify)
     if certify:
         require_flint()
     options = options or DEFAULT_OPTIONS

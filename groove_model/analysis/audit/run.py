@@ -5,7 +5,7 @@ from __future__ import annotations
 import logging
 import time
 
-from ...model.parameters import check_friction
+from ...model.parameters import check_flag, check_friction
 from . import caption, contact, rolling, rolling_sliding  # noqa: F401  (their @claim register the checks)
 from .context import Context
 from .registry import CHECKS, CLAIM_TEXTS
@@ -35,8 +35,11 @@ def run_audit(ks=DEFAULT_KS, use_tracer: bool = True) -> AuditReport:
     ------
     ValueError
         If ``ks`` is empty or a ``k`` is outside its range.
+    TypeError
+        If ``use_tracer`` is not a bool.
     """
     ks = tuple(dict.fromkeys(check_friction(k) for k in ks))
+    use_tracer = check_flag("use_tracer", use_tracer)
     if not ks:
         raise ValueError("ks is empty: give at least one friction coefficient k > 0")
     missing = [text.id for text in CLAIM_TEXTS if text.id not in CHECKS]
