@@ -82,6 +82,7 @@ def run(args) -> int:
     from ..model.parameters import Parameters, k_text
 
     require_plotting()
+    # After require_plotting: a bad MPLBACKEND is a usage error, not a traceback.
     from ..plots.regime_map import save_regime_map
     from ..tracing import trace_boundaries
 

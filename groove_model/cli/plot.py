@@ -37,6 +37,7 @@ def run(args) -> int:
     from ..model.parameters import k_text
 
     require_plotting()
+    # After require_plotting: a bad MPLBACKEND is a usage error, not a traceback.
     from ..plots.overlay import save_overlay
 
     frames = []
