@@ -40,6 +40,16 @@ class Event:
         (default) takes a central difference of ``function`` along the
         tangent (two more calls of ``function`` per point).
 
+    Notes
+    -----
+    ``function`` is also called at a third and two thirds of every step, on
+    the step's cubic Hermite arc; where those values disagree with the
+    event's cubic model near zero (and again on the curve), the step is
+    split there and its parts checked the same way, down to a 27th of the
+    step. So an event that oscillates or dips faster than the steps shows
+    its zeros; one whose zeros are closer than that needs ``ds_max`` below
+    its own scale.
+
     Raises
     ------
     ValueError

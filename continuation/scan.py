@@ -8,11 +8,15 @@ models each function on the step from the data the step already has, and
 subdivides where the model allows zeros the end values do not show
 (:class:`StepScan`). Each bracket is then located by :mod:`continuation.locate`.
 
-The resolution is the step's: the models are cubic in the arclength, and the step
-control follows the curve, not the events. An event that changes on a scale shorter
-than a step (oscillating, or a dip narrower than the step between flat ends) can
-have zeros no model of the step's data shows; such an event needs ``ds_max`` below
-its own scale.
+The models are cubic in the arclength and the step control follows the curve, not the
+events, so an event that changes on a scale shorter than a step (it oscillates, or dips
+between flat ends) can have zeros no model of the ends' data shows. Each event is
+therefore also evaluated at a third and two thirds of every interval (on its Hermite arc):
+where those values disagree with the model near zero, on the arc and again on the curve,
+the interval is split there at corrected nodes and its thirds checked again
+(:meth:`StepScan.event_brackets`). This resolves events down to ``1/3**RESOLVE_DEPTH`` of
+the step; what remains is what no finite sampling can exclude (zeros closer than that, a
+dip that falls between the samples): such an event needs ``ds_max`` below its own scale.
 """
 
 from __future__ import annotations
@@ -65,6 +69,24 @@ TERMINAL_NOISE = 1e-10
 
 #: relative step of the central difference of the Jacobian along the tangent (curvature)
 CURVATURE_STEP = 1e-7
+
+#: where inside each interval an event is compared with its model (fractions of the width)
+SAMPLES = (1.0 / 3.0, 2.0 / 3.0)
+
+#: points of the grid on which the zeros of an event's model and of the model with its
+#: error term are counted (:func:`_samples_disagree`)
+ZERO_COUNT_GRID = 64
+
+#: an event's sample further than this fraction of the model's largest value from the
+#: model marks the model as inaccurate (:func:`_samples_disagree`)
+MODEL_TOL = 0.1
+
+#: ... and matters where the model comes closer to zero than this many times the error term
+NEAR_ZERO = 4.0
+
+#: the sample check splits an interval in three at most this many times over (down to
+#: 1/3**RESOLVE_DEPTH of the step): the resolution of events faster than the step
+RESOLVE_DEPTH = 3
 
 
 class LocateError(RuntimeError):
@@ -180,6 +202,46 @@ def _sign_changes(values: Sequence[float]) -> int:
     return sum(1 for p, q in zip(signs, signs[1:], strict=False) if p != q)
 
 
+def _samples_disagree(c, deltas: tuple[float, float], f_lo: float, f_hi: float) -> bool:
+    """Whether an event's values inside an interval show that its cubic model ``P`` there
+    cannot be trusted with the event's zeros.
+
+    ``deltas`` are the event's values at ``u = 1/3`` and ``u = 2/3`` (:data:`SAMPLES`) less
+    the model's. The error of a cubic Hermite interpolant is ``f^(4)(xi) u^2 (1 - u)^2 / 24``
+    (times the width to the fourth), so ``Q = P + u^2 (1 - u)^2 (alpha + beta u)``, which
+    also matches the two values, is the model with its error term added. The model is not
+    trusted where ``P`` and ``Q`` have different numbers of zeros in ``(0, 1)`` (counted on a
+    grid of :data:`ZERO_COUNT_GRID` points, with the zero-adjusted end values ``f_lo``,
+    ``f_hi``), or where a delta exceeds :data:`MODEL_TOL` times the model's largest value
+    while the model comes within :data:`NEAR_ZERO` times ``max |Q - P|`` of zero (an event
+    that changes faster than the interval, seen at two points: elsewhere it may be further
+    off still). A model that keeps its sign further than that from zero is trusted.
+    """
+    alpha, beta = _error_term(deltas)
+    if (alpha == 0.0 and beta == 0.0) or not (math.isfinite(alpha) and math.isfinite(beta)):
+        return False
+    critical = [_value(c, u) for u in _critical_points(c)]
+    values = [f_lo, *critical, f_hi]
+    same_sign = all((v > 0.0) == (f_lo > 0.0) for v in values)
+    nearest = min(map(abs, values)) if same_sign else 0.0
+    if nearest > NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0:
+        return False
+    if max(map(abs, deltas)) > MODEL_TOL * max(map(abs, values)):
+        return True
+    u = np.linspace(0.0, 1.0, ZERO_COUNT_GRID + 1)[1:-1]
+    p = c[0] + u * (c[1] + u * (c[2] + u * c[3]))
+    q = p + (u * (1.0 - u)) ** 2 * (alpha + beta * u)
+    return _sign_changes([f_lo, *p.tolist(), f_hi]) != _sign_changes([f_lo, *q.tolist(), f_hi])
+
+
+def _error_term(deltas: tuple[float, float]) -> tuple[float, float]:
+    """``(alpha, beta)`` of ``E(u) = u^2 (1 - u)^2 (alpha + beta u)`` with ``E(1/3)``,
+    ``E(2/3)`` equal to ``deltas`` (``u^2 (1 - u)^2 = 4/81`` at both), ``|E| <= (|alpha| +
+    |beta|)/16`` on ``[0, 1]``."""
+    d1, d2 = deltas
+    return 20.25 * (2.0 * d1 - d2), 60.75 * (d2 - d1)
+
+
 def _split_point(c, f_lo: float, f_hi: float) -> float | None:
     """Where to look inside an interval whose model may hide zeros, else ``None``.
 
@@ -246,16 +308,28 @@ class StepScan:
         self.events = events
         self.nodes = [a, b]
         self.describe = evaluator.problem.describe
+        #: the uncorrected points of each interval (by its ends' s) at SAMPLES of its arc
+        self._samples: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
 
     # --- nodes --------------------------------------------------------------------------
     def node_at(self, s: float) -> Node:
-        """The curve point at Hermite parameter ``s`` inside the step, corrected, with tangent."""
+        """The curve point at Hermite parameter ``s`` inside the step, corrected, with tangent
+        (a node of the step from now on)."""
         nodes = self.nodes
-        if len(nodes) >= MAX_NODES:
-            raise LocateError(f"more than {MAX_NODES} nodes needed to resolve the step between "
-                              f"s={nodes[0].s!r} and s={nodes[-1].s!r}")
+        self._check_capacity()
         k = next(k for k in range(1, len(nodes)) if nodes[k].s >= s)
-        lo, hi = nodes[k - 1], nodes[k]
+        node = self._corrected(nodes[k - 1], nodes[k], s)
+        nodes.insert(k, node)
+        return node
+
+    def _check_capacity(self) -> None:
+        """:class:`LocateError` if the step has :data:`MAX_NODES` nodes already."""
+        if len(self.nodes) >= MAX_NODES:
+            raise LocateError(f"more than {MAX_NODES} nodes needed to resolve the step between "
+                              f"s={self.nodes[0].s!r} and s={self.nodes[-1].s!r}")
+
+    def _corrected(self, lo: Node, hi: Node, s: float) -> Node:
+        """The curve point at Hermite parameter ``s`` between ``lo`` and ``hi``, corrected."""
         width = hi.s - lo.s
         point, derivative = hermite(lo.x, lo.tangent, hi.x, hi.tangent, width, s - lo.s)
         border = derivative / norm(derivative)
@@ -272,10 +346,8 @@ class StepScan:
             j = next(j for j, v in enumerate(values) if not math.isfinite(v))
             raise EventNotFinite(f"event '{self.events[j].name}' is {values[j]!r} at "
                                  f"x={self.describe(result.x)}")
-        node = Node(result.x, s, result.tangent, result.det, result.residual, result.iterations,
+        return Node(result.x, s, result.tangent, result.det, result.residual, result.iterations,
                     values, result.jacobian)
-        nodes.insert(k, node)
-        return node
 
     def slope(self, node: Node, j: int) -> float:
         """``d g_j / ds`` at a node (computed once)."""
@@ -294,17 +366,78 @@ class StepScan:
 
     # --- brackets -----------------------------------------------------------------------
     def event_brackets(self, j: int, direction: int = 0) -> list[tuple[Node, Node, float, float]]:
-        """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step."""
+        """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step.
 
-        if len(self.nodes) == 2 and self._clear(j):
-            return []
+        Besides the model's own splits (:meth:`_brackets`), every interval where the event at
+        ``u = 1/3`` and ``2/3`` disagrees with the model near zero (:func:`_samples_disagree`),
+        on the Hermite arc and again on the curve, is split there, down to
+        ``1/3**RESOLVE_DEPTH`` of the step, so an event that changes faster than the step
+        shows its zeros.
+        """
 
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
             return _cubic(lo.events[j], width * self.slope(lo, j),
                           hi.events[j], width * self.slope(hi, j))
 
-        return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes))
+        if len(self.nodes) == 2 and self._clear(j):
+            # the model stays above CLEAR times its smaller end value: samples whose error
+            # term stays within 1/NEAR_ZERO of that are trusted (_samples_disagree)
+            a, b = self.nodes
+            f_a, f_b = a.events[j], b.events[j]
+            m_a, m_b = (b.s - a.s) * self.slope(a, j), (b.s - a.s) * self.slope(b, j)
+            first, second = self._sample_points(a, b)
+            event = self.events[j]
+            # the model at u = 1/3 and 2/3: f_a h00 + f_b h01 + m_a h10 + m_b h11 there
+            deltas = (event_value(event, first, self.describe)
+                      - (20.0 * f_a + 7.0 * f_b + 4.0 * m_a - 2.0 * m_b) / 27.0,
+                      event_value(event, second, self.describe)
+                      - (7.0 * f_a + 20.0 * f_b + 2.0 * m_a - 4.0 * m_b) / 27.0)
+            alpha, beta = _error_term(deltas)
+            if not NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 \
+                    >= CLEAR * min(abs(f_a), abs(f_b)):
+                return []  # (also when a sample is not finite: NaN compares False)
+
+        finest = (self.nodes[-1].s - self.nodes[0].s) / 3.0 ** RESOLVE_DEPTH
+
+        def resolve(lo: Node, hi: Node, c, f_lo: float, f_hi: float) -> list[Node]:
+            if hi.s - lo.s < 2.0 * finest:
+                return []
+            deltas = self._sample_deltas(lo, hi, j, c)
+            if deltas is None or not _samples_disagree(c, deltas, f_lo, f_hi):
+                return []
+            # confirmed on the curve: the arc is O(h^4) off it, which moves an event that is
+            # steep across the curve (not along it) by more than the model's error
+            width = hi.s - lo.s
+            nodes = [self._corrected(lo, hi, lo.s + u * width) for u in SAMPLES]
+            deltas = (nodes[0].events[j] - _value(c, SAMPLES[0]),
+                      nodes[1].events[j] - _value(c, SAMPLES[1]))
+            return nodes if _samples_disagree(c, deltas, f_lo, f_hi) else []
+
+        return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes),
+                              resolve)
+
+    def _sample_deltas(self, lo: Node, hi: Node, j: int, c) -> tuple[float, float] | None:
+        """Event ``j`` at :data:`SAMPLES` of the interval's cubic Hermite arc (not corrected:
+        ``O(h^4)`` off the curve) less the model ``c`` there; ``None`` if not finite."""
+        points = self._sample_points(lo, hi)
+        deltas = (event_value(self.events[j], points[0], self.describe) - _value(c, SAMPLES[0]),
+                  event_value(self.events[j], points[1], self.describe) - _value(c, SAMPLES[1]))
+        return deltas if math.isfinite(deltas[0]) and math.isfinite(deltas[1]) else None
+
+    def _sample_points(self, lo: Node, hi: Node) -> tuple[np.ndarray, np.ndarray]:
+        """The interval's cubic Hermite arc at :data:`SAMPLES` (computed once per interval)."""
+        key = (lo.s, hi.s)
+        points = self._samples.get(key)
+        if points is None:
+            # x_lo h00 + x_hi h01 + h (t_lo h10 + t_hi h11) at u = 1/3 and 2/3
+            width = hi.s - lo.s
+            points = ((20.0 * lo.x + 7.0 * hi.x + width * (4.0 * lo.tangent - 2.0 * hi.tangent))
+                      / 27.0,
+                      (7.0 * lo.x + 20.0 * hi.x + width * (2.0 * lo.tangent - 4.0 * hi.tangent))
+                      / 27.0)
+            self._samples[key] = points
+        return points
 
     def _clear(self, j: int) -> bool:
         """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero.
@@ -430,7 +563,11 @@ class StepScan:
         c_2 = -6.0 * chord + 3.0 * t_a + 3.0 * t_b
         return 0.25 * abs(c_2) <= (1.0 - CLEAR) * min(abs(t_a), abs(t_b))
 
-    def _brackets(self, value, model, direction: int, nodes=None):
+    def _brackets(self, value, model, direction: int, nodes=None, resolve=None):
+        """Brackets of the zeros of ``value`` along the step, from the intervals between
+        ``nodes``: each interval is split at a corrected node where its ``model`` may hide
+        zeros (:func:`_split_point`) or at the nodes ``resolve(lo, hi, c, f_lo, f_hi)`` gives
+        (the sample check of events)."""
         nodes = self.nodes if nodes is None else nodes
         out = []
         # every interval between the nodes found so far (earlier scans of the step left some)
@@ -451,13 +588,20 @@ class StepScan:
                 f_hi = math.copysign(_TINY, slope) if slope != 0.0 else -f_lo
             if f_lo == 0.0 or f_hi == 0.0:
                 continue  # identically zero on the interval's ends and model: no crossing
-            split = None
+            split, inside = None, []
             if hi.s - lo.s > 2.0 * self.options.event_tol:
                 split = _split_point(c, f_lo, f_hi)
+                if split is None and resolve is not None:
+                    inside = resolve(lo, hi, c, f_lo, f_hi)
             if split is not None:
-                middle = self.node_at(lo.s + split * (hi.s - lo.s))
-                stack.append((middle, hi))
-                stack.append((lo, middle))
+                inside = [self.node_at(lo.s + split * (hi.s - lo.s))]
+            else:
+                for node in inside:
+                    self._check_capacity()
+                    self.add(node)
+            if inside:
+                ends = [lo, *inside, hi]
+                stack.extend(zip(ends[-2::-1], ends[:0:-1], strict=True))
             elif crossed(f_lo, f_hi, direction):
                 out.append((lo, hi, f_lo, value(hi)))
         out.sort(key=lambda item: item[0].s)

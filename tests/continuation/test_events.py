@@ -88,3 +88,65 @@ def test_max_arclength_is_exact(circle):
     assert curve.status is Status.MAX_ARCLENGTH and curve.ok
     assert curve.s[-1] == 1.0
     assert np.allclose(curve.x[-1], [math.cos(1.0), math.sin(1.0)], atol=1e-9)
+
+
+def _line():
+    from continuation import Problem
+
+    # x = (lambda, y), y = lambda: the event's argument is the arclength / sqrt 2
+    return Problem(lambda x: np.array([x[1] - x[0]]), lambda x: np.array([[-1.0, 1.0]]))
+
+
+@pytest.mark.parametrize("ds_max", [0.2, 0.5])
+@pytest.mark.parametrize("omega", [30.0, 60.0, 100.0])
+def test_an_event_faster_than_the_step_shows_every_zero(omega, ds_max):
+    # cos(omega lambda) has up to 11 zeros inside one step here; the ends' values and slopes
+    # alone showed 45 of its 95 zeros for omega = 30 and ds_max = 0.5, with status ok; the
+    # samples at a third and two thirds of each step, checked on the curve, show them all
+    length = 10.0
+    event = Event("cos", lambda x: math.cos(omega * x[0]))
+    curve = trace(_line(), [0.0, 0.0], 1, Options(ds_max=ds_max, max_arclength=length * math.sqrt(2)),
+                  events=[event])
+    assert curve.status is Status.MAX_ARCLENGTH
+    found = sorted(abs(p.x[0]) for p in curve.special("event"))
+    exact = [(0.5 + n) * math.pi / omega for n in range(int(length * omega / math.pi) + 1)]
+    exact = [z for z in exact if z < length]
+    assert len(found) == len(exact)
+    assert max(abs(f - z) for f, z in zip(found, exact, strict=True)) <= 1e-10
+
+
+@pytest.mark.parametrize("centre", np.linspace(1.0, 2.0, 7).tolist())
+def test_a_dip_narrower_than_the_step_between_flat_ends_is_seen(centre):
+    # 1 - 1.5 exp(-((lambda - c)/w)^2) is flat at both ends of a step of 0.35 in lambda and
+    # dips below zero over 0.064 of it: 4 of these 7 pairs were missed, status ok
+    width = 0.05
+    event = Event("dip", lambda x: 1.0 - 1.5 * math.exp(-((x[0] + centre) / width) ** 2))
+    curve = trace(_line(), [0.0, 0.0], 1, Options(ds_max=0.5, max_arclength=4 * math.sqrt(2)),
+                  events=[event])
+    half = width * math.sqrt(math.log(1.5))
+    found = sorted(-p.x[0] for p in curve.special("event"))
+    assert found == pytest.approx([centre - half, centre + half], abs=1e-10)
+
+
+def test_an_event_steep_across_the_curve_but_slow_along_it_is_not_split(circle):
+    # the samples lie on the step's arc, O(h^4) off the curve: an event that is steep across
+    # the curve differs there from its model by far more than along the curve, where it is
+    # the slow x - 0.3. Each such disagreement is checked again on the curve, where it goes
+    # away, so no step is split.
+    import continuation.scan as scan
+
+    event = Event("steep", lambda x: 1e5 * (x[0] ** 2 + x[1] ** 2 - 1.0) + (x[0] - 0.3))
+    checked, added = [], []
+    corrected, add = scan.StepScan._corrected, scan.StepScan.add
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(scan.StepScan, "_corrected",
+                      lambda self, lo, hi, s: checked.append(s) or corrected(self, lo, hi, s))
+        patch.setattr(scan.StepScan, "add", lambda self, node: added.append(node) or add(self, node))
+        curve = trace(circle, [1.0, 0.0], options=Options(ds_max=0.5), events=[event])
+    assert curve.status is Status.CLOSED
+    assert checked, "the samples on the arc should have disagreed with the model somewhere"
+    assert added == []
+    points = curve.special("event")
+    assert np.allclose([p.x[0] for p in points], 0.3, atol=1e-9)
+    assert sorted(p.x[1] for p in points) == pytest.approx([-math.sqrt(0.91), math.sqrt(0.91)],
+                                                          abs=1e-9)
