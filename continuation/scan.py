@@ -27,6 +27,19 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from .corrector import correct
+from .cubic import (
+    APPROACH,
+    NEAR_ZERO,
+    SAMPLES,
+    SPLIT_MARGIN,
+    critical_points,
+    cubic,
+    cubic_derivative,
+    cubic_value,
+    error_term,
+    samples_disagree,
+    split_point,
+)
 from .errors import CallbackError
 from .events import Event, crossed
 from .linalg import max_abs, norm
@@ -48,11 +61,9 @@ JUMP = 0.1
 #: relative step of the central difference of an event along the tangent
 SLOPE_STEP = 1e-6
 
-#: a model extremum this close to zero, relative to the end values, is checked by a node
-APPROACH = 0.5
-
-#: a split point is kept this far (as a fraction) from the ends of its interval
-SPLIT_MARGIN = 0.01
+#: the sample check splits an interval in three at most this many times over (down to
+#: 1/3**RESOLVE_DEPTH of the step): the resolution of events faster than the step
+RESOLVE_DEPTH = 3
 
 #: an event is clear of zero on a step when its cubic model provably stays above this
 #: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
@@ -69,25 +80,6 @@ TERMINAL_NOISE = 1e-10
 
 #: relative step of the central difference of the Jacobian along the tangent (curvature)
 CURVATURE_STEP = 1e-7
-
-#: where inside each interval an event is compared with its model (fractions of the width)
-SAMPLES = (1.0 / 3.0, 2.0 / 3.0)
-
-#: points of the grid on which the zeros of an event's model and of the model with its
-#: error term are counted (:func:`_samples_disagree`)
-ZERO_COUNT_GRID = 64
-
-#: an event's sample further than this fraction of the model's largest value from the
-#: model marks the model as inaccurate (:func:`_samples_disagree`)
-MODEL_TOL = 0.1
-
-#: ... and matters where the model comes closer to zero than this many times the error term
-NEAR_ZERO = 4.0
-
-#: the sample check splits an interval in three at most this many times over (down to
-#: 1/3**RESOLVE_DEPTH of the step): the resolution of events faster than the step
-RESOLVE_DEPTH = 3
-
 
 class LocateError(RuntimeError):
     """A special point was bracketed but could not be located (or a scan not resolved)."""
@@ -169,100 +161,6 @@ def _event_slope(event: Event, node: Node, describe) -> float:
     return (event_value(event, forward, describe) - event_value(event, backward, describe)) / width
 
 
-def _cubic(f0: float, m0: float, f1: float, m1: float) -> tuple[float, float, float, float]:
-    """Power coefficients on ``u in [0, 1]`` of the cubic with ``P(0), P'(0), P(1), P'(1)``."""
-    return (f0, m0, 3.0 * (f1 - f0) - 2.0 * m0 - m1, 2.0 * (f0 - f1) + m0 + m1)
-
-
-def _value(c, u: float) -> float:
-    return c[0] + u * (c[1] + u * (c[2] + u * c[3]))
-
-
-def _derivative(c, u: float) -> float:
-    return c[1] + u * (2.0 * c[2] + 3.0 * u * c[3])
-
-
-def _critical_points(c) -> list[float]:
-    """Zeros of ``P'(u) = c1 + 2 c2 u + 3 c3 u^2`` in ``(0, 1)``, in order."""
-    qa, qb, qc = 3.0 * c[3], 2.0 * c[2], c[1]
-    scale = abs(qb) + abs(qc)
-    if abs(qa) <= 1e-14 * scale or qa == 0.0:
-        roots = [-qc / qb] if qb != 0.0 else []
-    else:
-        disc = qb * qb - 4.0 * qa * qc
-        if disc < 0.0:
-            return []
-        q = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))
-        roots = [q / qa] + ([qc / q] if q != 0.0 else [])
-    return sorted(u for u in roots if 0.0 < u < 1.0)
-
-
-def _sign_changes(values: Sequence[float]) -> int:
-    signs = [v > 0.0 for v in values if v != 0.0]
-    return sum(1 for p, q in zip(signs, signs[1:], strict=False) if p != q)
-
-
-def _samples_disagree(c, deltas: tuple[float, float], f_lo: float, f_hi: float) -> bool:
-    """Whether an event's values inside an interval show that its cubic model ``P`` there
-    cannot be trusted with the event's zeros.
-
-    ``deltas`` are the event's values at ``u = 1/3`` and ``u = 2/3`` (:data:`SAMPLES`) less
-    the model's. The error of a cubic Hermite interpolant is ``f^(4)(xi) u^2 (1 - u)^2 / 24``
-    (times the width to the fourth), so ``Q = P + u^2 (1 - u)^2 (alpha + beta u)``, which
-    also matches the two values, is the model with its error term added. The model is not
-    trusted where ``P`` and ``Q`` have different numbers of zeros in ``(0, 1)`` (counted on a
-    grid of :data:`ZERO_COUNT_GRID` points, with the zero-adjusted end values ``f_lo``,
-    ``f_hi``), or where a delta exceeds :data:`MODEL_TOL` times the model's largest value
-    while the model comes within :data:`NEAR_ZERO` times ``max |Q - P|`` of zero (an event
-    that changes faster than the interval, seen at two points: elsewhere it may be further
-    off still). A model that keeps its sign further than that from zero is trusted.
-    """
-    alpha, beta = _error_term(deltas)
-    if (alpha == 0.0 and beta == 0.0) or not (math.isfinite(alpha) and math.isfinite(beta)):
-        return False
-    critical = [_value(c, u) for u in _critical_points(c)]
-    values = [f_lo, *critical, f_hi]
-    same_sign = all((v > 0.0) == (f_lo > 0.0) for v in values)
-    nearest = min(map(abs, values)) if same_sign else 0.0
-    if nearest > NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0:
-        return False
-    if max(map(abs, deltas)) > MODEL_TOL * max(map(abs, values)):
-        return True
-    u = np.linspace(0.0, 1.0, ZERO_COUNT_GRID + 1)[1:-1]
-    p = c[0] + u * (c[1] + u * (c[2] + u * c[3]))
-    q = p + (u * (1.0 - u)) ** 2 * (alpha + beta * u)
-    return _sign_changes([f_lo, *p.tolist(), f_hi]) != _sign_changes([f_lo, *q.tolist(), f_hi])
-
-
-def _error_term(deltas: tuple[float, float]) -> tuple[float, float]:
-    """``(alpha, beta)`` of ``E(u) = u^2 (1 - u)^2 (alpha + beta u)`` with ``E(1/3)``,
-    ``E(2/3)`` equal to ``deltas`` (``u^2 (1 - u)^2 = 4/81`` at both), ``|E| <= (|alpha| +
-    |beta|)/16`` on ``[0, 1]``."""
-    d1, d2 = deltas
-    return 20.25 * (2.0 * d1 - d2), 60.75 * (d2 - d1)
-
-
-def _split_point(c, f_lo: float, f_hi: float) -> float | None:
-    """Where to look inside an interval whose model may hide zeros, else ``None``.
-
-    The model ``P`` (with ``P(0) = f_lo``, ``P(1) = f_hi``, both nonzero) may hide
-    zeros that the ends do not show when it changes sign more often than the ends
-    do, or when it has an interior extremum that comes within ``APPROACH`` of zero
-    relative to the smaller end value (the function turns towards zero and back).
-    The split point is that extremum.
-    """
-    critical = _critical_points(c)
-    if not critical:
-        return None
-    values = [_value(c, u) for u in critical]
-    ends = 1 if (f_lo > 0.0) != (f_hi > 0.0) else 0
-    nearest = min(range(len(critical)), key=lambda i: abs(values[i]))
-    if _sign_changes([f_lo, *values, f_hi]) > ends \
-            or abs(values[nearest]) < APPROACH * min(abs(f_lo), abs(f_hi)):
-        return min(1.0 - SPLIT_MARGIN, max(SPLIT_MARGIN, critical[nearest]))
-    return None
-
-
 class StepScan:
     """The special points of one accepted step ``(a, b]``: brackets of zeros.
 
@@ -289,7 +187,7 @@ class StepScan:
     away from zero gets one node at the model's extremum first: a pair of folds in a
     sharp dip of ``t_i`` can hide from any model of the ends' data alone. Where the
     model allows zeros the end values do not show
-    (:func:`_split_point`), a node is corrected onto the curve at the model's
+    (:func:`split_point`), a node is corrected onto the curve at the model's
     extremum and both halves are scanned again with their own, more accurate,
     models, until every interval has a model that either keeps its sign or
     changes it once. A zero at an interval's start is taken on the side the
@@ -369,7 +267,7 @@ class StepScan:
         """Brackets ``(lo, hi, g_lo, g_hi)`` of the zeros of event ``j`` in the step.
 
         Besides the model's own splits (:meth:`_brackets`), every interval where the event at
-        ``u = 1/3`` and ``2/3`` disagrees with the model near zero (:func:`_samples_disagree`),
+        ``u = 1/3`` and ``2/3`` disagrees with the model near zero (:func:`samples_disagree`),
         on the Hermite arc and again on the curve, is split there, down to
         ``1/3**RESOLVE_DEPTH`` of the step, so an event that changes faster than the step
         shows its zeros.
@@ -377,12 +275,12 @@ class StepScan:
 
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
-            return _cubic(lo.events[j], width * self.slope(lo, j),
+            return cubic(lo.events[j], width * self.slope(lo, j),
                           hi.events[j], width * self.slope(hi, j))
 
         if len(self.nodes) == 2 and self._clear(j):
             # the model stays above CLEAR times its smaller end value: samples whose error
-            # term stays within 1/NEAR_ZERO of that are trusted (_samples_disagree)
+            # term stays within 1/NEAR_ZERO of that are trusted (samples_disagree)
             a, b = self.nodes
             f_a, f_b = a.events[j], b.events[j]
             m_a, m_b = (b.s - a.s) * self.slope(a, j), (b.s - a.s) * self.slope(b, j)
@@ -393,7 +291,7 @@ class StepScan:
                       - (20.0 * f_a + 7.0 * f_b + 4.0 * m_a - 2.0 * m_b) / 27.0,
                       event_value(event, second, self.describe)
                       - (7.0 * f_a + 20.0 * f_b + 2.0 * m_a - 4.0 * m_b) / 27.0)
-            alpha, beta = _error_term(deltas)
+            alpha, beta = error_term(deltas)
             if not NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 \
                     >= CLEAR * min(abs(f_a), abs(f_b)):
                 return []  # (also when a sample is not finite: NaN compares False)
@@ -404,15 +302,15 @@ class StepScan:
             if hi.s - lo.s < 2.0 * finest:
                 return []
             deltas = self._sample_deltas(lo, hi, j, c)
-            if deltas is None or not _samples_disagree(c, deltas, f_lo, f_hi):
+            if deltas is None or not samples_disagree(c, deltas, f_lo, f_hi):
                 return []
             # confirmed on the curve: the arc is O(h^4) off it, which moves an event that is
             # steep across the curve (not along it) by more than the model's error
             width = hi.s - lo.s
             nodes = [self._corrected(lo, hi, lo.s + u * width) for u in SAMPLES]
-            deltas = (nodes[0].events[j] - _value(c, SAMPLES[0]),
-                      nodes[1].events[j] - _value(c, SAMPLES[1]))
-            return nodes if _samples_disagree(c, deltas, f_lo, f_hi) else []
+            deltas = (nodes[0].events[j] - cubic_value(c, SAMPLES[0]),
+                      nodes[1].events[j] - cubic_value(c, SAMPLES[1]))
+            return nodes if samples_disagree(c, deltas, f_lo, f_hi) else []
 
         return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes),
                               resolve)
@@ -421,8 +319,9 @@ class StepScan:
         """Event ``j`` at :data:`SAMPLES` of the interval's cubic Hermite arc (not corrected:
         ``O(h^4)`` off the curve) less the model ``c`` there; ``None`` if not finite."""
         points = self._sample_points(lo, hi)
-        deltas = (event_value(self.events[j], points[0], self.describe) - _value(c, SAMPLES[0]),
-                  event_value(self.events[j], points[1], self.describe) - _value(c, SAMPLES[1]))
+        event = self.events[j]
+        deltas = (event_value(event, points[0], self.describe) - cubic_value(c, SAMPLES[0]),
+                  event_value(event, points[1], self.describe) - cubic_value(c, SAMPLES[1]))
         return deltas if math.isfinite(deltas[0]) and math.isfinite(deltas[1]) else None
 
     def _sample_points(self, lo: Node, hi: Node) -> tuple[np.ndarray, np.ndarray]:
@@ -521,7 +420,7 @@ class StepScan:
                 # the cubic Hermite model of t_i from its exact slopes dt_i/ds (curvatures):
                 # the quadratic below, from the chord, can miss a pair of folds next to a
                 # nearly vanishing t_i at an end (a dip the arc's chord does not feel)
-                return _cubic(t_lo, width * float(self.turning(lo)[i]), t_hi,
+                return cubic(t_lo, width * float(self.turning(lo)[i]), t_hi,
                               width * float(self.turning(hi)[i]))
             # at a singular start (no curvature there): t_i on the derivative of the cubic
             # Hermite arc of x_i, a quadratic
@@ -538,8 +437,8 @@ class StepScan:
                 # a pair of folds can hide from any model of the ends' data (a sharp dip);
                 # one node at the model's extremum shows the turn (each half is then scanned)
                 c = model(a, b)
-                critical = _critical_points(c)
-                u = min(critical, key=lambda v: abs(_value(c, v))) if critical else 0.5
+                critical = critical_points(c)
+                u = min(critical, key=lambda v: abs(cubic_value(c, v))) if critical else 0.5
                 self.node_at(a.s + min(1.0 - SPLIT_MARGIN, max(SPLIT_MARGIN, u)) * (b.s - a.s))
         nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
         return self._brackets(value, model, 0, nodes)
@@ -566,7 +465,7 @@ class StepScan:
     def _brackets(self, value, model, direction: int, nodes=None, resolve=None):
         """Brackets of the zeros of ``value`` along the step, from the intervals between
         ``nodes``: each interval is split at a corrected node where its ``model`` may hide
-        zeros (:func:`_split_point`) or at the nodes ``resolve(lo, hi, c, f_lo, f_hi)`` gives
+        zeros (:func:`split_point`) or at the nodes ``resolve(lo, hi, c, f_lo, f_hi)`` gives
         (the sample check of events)."""
         nodes = self.nodes if nodes is None else nodes
         out = []
@@ -584,13 +483,13 @@ class StepScan:
             if f_hi == 0.0:
                 # a zero at the end is a crossing of this interval if the function
                 # moves on to the other side
-                slope = _derivative(c, 1.0)
+                slope = cubic_derivative(c, 1.0)
                 f_hi = math.copysign(_TINY, slope) if slope != 0.0 else -f_lo
             if f_lo == 0.0 or f_hi == 0.0:
                 continue  # identically zero on the interval's ends and model: no crossing
             split, inside = None, []
             if hi.s - lo.s > 2.0 * self.options.event_tol:
-                split = _split_point(c, f_lo, f_hi)
+                split = split_point(c, f_lo, f_hi)
                 if split is None and resolve is not None:
                     inside = resolve(lo, hi, c, f_lo, f_hi)
             if split is not None:
