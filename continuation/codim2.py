@@ -443,7 +443,7 @@ def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Cur
         message = (f"the start is not a regular point of the curve of {what}: check that it "
                    f"is a {what} at its p (a fold of that coordinate, for follow_fold), not a "
                    f"degenerate one (a cusp); the augmented system's Jacobian is singular there "
-                   f"({message.split(' (')[0]})")
+                   f"({message.partition(': the start is')[0]})")
     ended = [p for p in last.special("event") if p.index == len(last) - 1]
     if (len(pieces) >= MAX_PIECES and status is Status.TERMINAL_EVENT and ended
             and ended[-1].event >= len(events)):

@@ -332,7 +332,7 @@ def _start(run: Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
     if tangent is None:
         singular_values, basis = _svd(J)
         if singular_values[0] == 0 or singular_values[-1] <= SINGULAR_RATIO * singular_values[0]:
-            ratio = singular_values[-1] / singular_values[0] if singular_values[0] else 0.0
+            ratio = abs(singular_values[-1]) / singular_values[0] if singular_values[0] else 0.0
             return None, Status.SINGULAR_START, (
                 f"the Jacobian has rank < n at the start {where} (smallest/largest singular "
                 f"value {ratio:.2e}): the start is a branch point or another singular point; "

@@ -236,3 +236,7 @@ def test_a_start_that_is_no_fold_of_the_coordinate_is_named_so():
     assert curve.status is Status.SINGULAR_START
     assert "not a regular point of the curve of fold of u" in curve.message
     assert "switch_branch" not in curve.message
+    # the engine's finding is kept whole (it was cut at its first " (", which a point's
+    # description can hold)
+    assert "the Jacobian has rank < n at the start" in curve.message
+    assert "smallest/largest singular value" in curve.message
