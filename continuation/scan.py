@@ -81,6 +81,10 @@ TERMINAL_NOISE = 1e-10
 #: relative step of the central difference of the Jacobian along the tangent (curvature)
 CURVATURE_STEP = 1e-7
 
+#: the cubic Hermite basis (h00, h01, h10, h11) at SAMPLES, the rows of u = 1/3 and 2/3
+_SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0
+
+
 class LocateError(RuntimeError):
     """A special point was bracketed but could not be located (or a scan not resolved)."""
 
@@ -329,12 +333,11 @@ class StepScan:
         key = (lo.s, hi.s)
         points = self._samples.get(key)
         if points is None:
-            # x_lo h00 + x_hi h01 + h (t_lo h10 + t_hi h11) at u = 1/3 and 2/3
+            # x_lo h00 + x_hi h01 + h (t_lo h10 + t_hi h11) at u = 1/3 and 2/3, in one product
             width = hi.s - lo.s
-            points = ((20.0 * lo.x + 7.0 * hi.x + width * (4.0 * lo.tangent - 2.0 * hi.tangent))
-                      / 27.0,
-                      (7.0 * lo.x + 20.0 * hi.x + width * (2.0 * lo.tangent - 4.0 * hi.tangent))
-                      / 27.0)
+            both = _SAMPLE_BASIS @ np.vstack((lo.x, hi.x, width * lo.tangent,
+                                              width * hi.tangent))
+            points = (both[0], both[1])
             self._samples[key] = points
         return points
 
