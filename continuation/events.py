@@ -44,11 +44,19 @@ class Event:
     -----
     ``function`` is also called at a third and two thirds of every step, on
     the step's cubic Hermite arc; where those values disagree with the
-    event's cubic model near zero (and again on the curve), the step is
-    split there and its parts checked the same way, down to a 27th of the
-    step. So an event that oscillates or dips faster than the steps shows
-    its zeros; one whose zeros are closer than that needs ``ds_max`` below
-    its own scale.
+    event's cubic model near zero, they are computed again on the curve and,
+    if they still disagree, the step is split there and its parts checked the
+    same way, down to a 27th of the step. In random tests this found every
+    zero of oscillations whose zeros were 0.08 of ``ds_max`` apart and more,
+    and of dips about a third of ``ds_max`` wide; but fixed samples can miss
+    what falls between them (a narrower dip, an oscillation whose period
+    fits the samples), so an event that changes on a scale much shorter
+    than the steps needs ``ds_max`` below that scale to be sure of its
+    zeros. The models assume an event that is smooth along the curve,
+    finite on it (where it is not, the run ends with ``EVENT_NOT_FINITE``)
+    and changing by more than the corrector's tolerance: kinks, stretches
+    where it vanishes identically, or an event that is zero on the whole
+    curve can be misread.
 
     Raises
     ------

@@ -14,9 +14,9 @@ between flat ends) can have zeros no model of the ends' data shows. Each event i
 therefore also evaluated at a third and two thirds of every interval (on its Hermite arc):
 where those values disagree with the model near zero, on the arc and again on the curve,
 the interval is split there at corrected nodes and its thirds checked again
-(:meth:`StepScan.event_brackets`). This resolves events down to ``1/3**RESOLVE_DEPTH`` of
-the step; what remains is what no finite sampling can exclude (zeros closer than that, a
-dip that falls between the samples): such an event needs ``ds_max`` below its own scale.
+(:meth:`StepScan.event_brackets`), down to ``1/3**RESOLVE_DEPTH`` of the step. What remains
+is what fixed samples cannot exclude (a dip that falls between them, an oscillation whose
+period fits them): such an event needs ``ds_max`` below its own scale.
 """
 
 from __future__ import annotations
@@ -212,6 +212,9 @@ class StepScan:
         self.describe = evaluator.problem.describe
         #: the uncorrected points of each interval (by its ends' s) at SAMPLES of its arc
         self._samples: dict[tuple[float, float], tuple[np.ndarray, np.ndarray]] = {}
+        #: the events there, by interval and event, and the corrected points there
+        self._arc_events: dict[tuple[float, float, int], tuple[float, float]] = {}
+        self._corrected_samples: dict[tuple[float, float], list[Node]] = {}
 
     # --- nodes --------------------------------------------------------------------------
     def node_at(self, s: float) -> Node:
@@ -288,45 +291,62 @@ class StepScan:
             a, b = self.nodes
             f_a, f_b = a.events[j], b.events[j]
             m_a, m_b = (b.s - a.s) * self.slope(a, j), (b.s - a.s) * self.slope(b, j)
-            first, second = self._sample_points(a, b)
-            event = self.events[j]
+            first, second = self._arc_values(a, b, j)
             # the model at u = 1/3 and 2/3: f_a h00 + f_b h01 + m_a h10 + m_b h11 there
-            deltas = (event_value(event, first, self.describe)
-                      - (20.0 * f_a + 7.0 * f_b + 4.0 * m_a - 2.0 * m_b) / 27.0,
-                      event_value(event, second, self.describe)
-                      - (7.0 * f_a + 20.0 * f_b + 2.0 * m_a - 4.0 * m_b) / 27.0)
-            alpha, beta = error_term(deltas)
-            if not NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 \
-                    >= CLEAR * min(abs(f_a), abs(f_b)):
-                return []  # (also when a sample is not finite: NaN compares False)
+            alpha, beta = error_term(
+                (first - (20.0 * f_a + 7.0 * f_b + 4.0 * m_a - 2.0 * m_b) / 27.0,
+                 second - (7.0 * f_a + 20.0 * f_b + 2.0 * m_a - 4.0 * m_b) / 27.0))
+            if NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 < CLEAR * min(abs(f_a), abs(f_b)):
+                return []  # (a sample that is not finite is checked on the curve below)
 
         finest = (self.nodes[-1].s - self.nodes[0].s) / 3.0 ** RESOLVE_DEPTH
 
         def resolve(lo: Node, hi: Node, c, f_lo: float, f_hi: float) -> list[Node]:
             if hi.s - lo.s < 2.0 * finest:
                 return []
-            deltas = self._sample_deltas(lo, hi, j, c)
-            if deltas is None or not samples_disagree(c, deltas, f_lo, f_hi):
+            model_values = [cubic_value(c, u) for u in SAMPLES]
+            arc = self._arc_values(lo, hi, j)
+            deltas = (arc[0] - model_values[0], arc[1] - model_values[1])
+            if all(map(math.isfinite, deltas)) and not samples_disagree(c, deltas, f_lo, f_hi):
                 return []
-            # confirmed on the curve: the arc is O(h^4) off it, which moves an event that is
-            # steep across the curve (not along it) by more than the model's error
-            width = hi.s - lo.s
-            nodes = [self._corrected(lo, hi, lo.s + u * width) for u in SAMPLES]
-            deltas = (nodes[0].events[j] - cubic_value(c, SAMPLES[0]),
-                      nodes[1].events[j] - cubic_value(c, SAMPLES[1]))
+            # checked on the curve: the arc is O(h^4) off it, which moves an event that is
+            # steep across the curve (not along it) by more than the model's error, and may
+            # leave the event's domain (on the curve, a value that is not finite is an error:
+            # EventNotFinite, as at any node)
+            nodes = self._sample_nodes(lo, hi)
+            if nodes[0].events[j] == 0.0 or nodes[1].events[j] == 0.0:
+                # an event that vanishes identically along a stretch: a node there would read
+                # as a crossing where the event does not change sign
+                return []
+            deltas = (nodes[0].events[j] - model_values[0], nodes[1].events[j] - model_values[1])
             return nodes if samples_disagree(c, deltas, f_lo, f_hi) else []
 
         return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes),
                               resolve)
 
-    def _sample_deltas(self, lo: Node, hi: Node, j: int, c) -> tuple[float, float] | None:
+    def _arc_values(self, lo: Node, hi: Node, j: int) -> tuple[float, float]:
         """Event ``j`` at :data:`SAMPLES` of the interval's cubic Hermite arc (not corrected:
-        ``O(h^4)`` off the curve) less the model ``c`` there; ``None`` if not finite."""
-        points = self._sample_points(lo, hi)
-        event = self.events[j]
-        deltas = (event_value(event, points[0], self.describe) - cubic_value(c, SAMPLES[0]),
-                  event_value(event, points[1], self.describe) - cubic_value(c, SAMPLES[1]))
-        return deltas if math.isfinite(deltas[0]) and math.isfinite(deltas[1]) else None
+        ``O(h^4)`` off the curve; computed once per interval and event, may be NaN)."""
+        key = (lo.s, hi.s, j)
+        values = self._arc_events.get(key)
+        if values is None:
+            points = self._sample_points(lo, hi)
+            event = self.events[j]
+            values = (event_value(event, points[0], self.describe),
+                      event_value(event, points[1], self.describe))
+            self._arc_events[key] = values
+        return values
+
+    def _sample_nodes(self, lo: Node, hi: Node) -> list[Node]:
+        """The curve points at :data:`SAMPLES` of the interval, corrected (once per interval,
+        for all events)."""
+        key = (lo.s, hi.s)
+        nodes = self._corrected_samples.get(key)
+        if nodes is None:
+            width = hi.s - lo.s
+            nodes = [self._corrected(lo, hi, lo.s + u * width) for u in SAMPLES]
+            self._corrected_samples[key] = nodes
+        return nodes
 
     def _sample_points(self, lo: Node, hi: Node) -> tuple[np.ndarray, np.ndarray]:
         """The interval's cubic Hermite arc at :data:`SAMPLES` (computed once per interval)."""

@@ -66,10 +66,11 @@ def trace(
     options : Options, optional
         Tolerances, step sizes and switches (default ``Options()``).
     events : sequence of Event, optional
-        Scalar functions whose zeros are located (and may stop the curve). Their zeros
-        are found as far as the steps resolve them: an event that changes on a scale
-        shorter than ``options.ds_max`` (oscillating, a narrow dip) needs a smaller
-        ``ds_max``.
+        Scalar functions whose zeros are located (and may stop the curve). Each is
+        also sampled inside every step and the step split where it changes faster than
+        the step (:class:`Event`, Notes), but sampling can miss what falls between its
+        samples: an event that changes on a scale much shorter than ``options.ds_max``
+        (oscillating, a narrow dip) needs a smaller ``ds_max`` to be sure of its zeros.
     tangent : array_like of shape (n + 1,), optional
         Initial tangent, required at a singular start (e.g. a branch point);
         it is normalised.

@@ -150,3 +150,21 @@ def test_an_event_steep_across_the_curve_but_slow_along_it_is_not_split(circle):
     assert np.allclose([p.x[0] for p in points], 0.3, atol=1e-9)
     assert sorted(p.x[1] for p in points) == pytest.approx([-math.sqrt(0.91), math.sqrt(0.91)],
                                                           abs=1e-9)
+
+
+def test_an_event_that_vanishes_along_a_stretch_without_changing_sign_has_no_zero():
+    # max(0, |lambda + 1| - 0.3) touches zero over [-1.3, -0.7] and never changes sign; a
+    # sample node inside the stretch used to read as a crossing there
+    event = Event("flat", lambda x: max(0.0, abs(x[0] + 1.0) - 0.3))
+    curve = trace(_line(), [0.0, 0.0], 1, Options(ds_max=0.5, max_arclength=4.0), events=[event])
+    assert curve.status is Status.MAX_ARCLENGTH
+    assert curve.special("event") == ()
+
+
+def test_an_event_not_finite_on_the_curve_inside_a_step_fails_loudly():
+    # not finite over 0.2 in lambda, between the step's ends: a sample there, corrected onto
+    # the curve, shows it (the ends alone did not: the run ended ok)
+    event = Event("holey", lambda x: math.nan if abs(x[0] + 1.07) < 0.1 else x[0] + 1.5)
+    curve = trace(_line(), [0.0, 0.0], 1, Options(ds_max=0.5, max_arclength=4.0), events=[event])
+    assert curve.status is Status.EVENT_NOT_FINITE
+    assert "event 'holey' is nan" in curve.message
