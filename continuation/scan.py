@@ -283,7 +283,7 @@ class StepScan:
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
             return cubic(lo.events[j], width * self.slope(lo, j),
-                          hi.events[j], width * self.slope(hi, j))
+                         hi.events[j], width * self.slope(hi, j))
 
         if len(self.nodes) == 2 and self._clear(j):
             # the model stays above CLEAR times its smaller end value: samples whose error
@@ -444,7 +444,7 @@ class StepScan:
                 # the quadratic below, from the chord, can miss a pair of folds next to a
                 # nearly vanishing t_i at an end (a dip the arc's chord does not feel)
                 return cubic(t_lo, width * float(self.turning(lo)[i]), t_hi,
-                              width * float(self.turning(hi)[i]))
+                             width * float(self.turning(hi)[i]))
             # at a singular start (no curvature there): t_i on the derivative of the cubic
             # Hermite arc of x_i, a quadratic
             chord = (hi.x[i] - lo.x[i]) / width
