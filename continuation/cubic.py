@@ -57,7 +57,8 @@ def cubic(f0: float, m0: float, f1: float, m1: float) -> tuple[float, float, flo
     return (f0, m0, 3.0 * (f1 - f0) - 2.0 * m0 - m1, 2.0 * (f0 - f1) + m0 + m1)
 
 
-def cubic_value(c, u: float) -> float:
+def cubic_value(c, u):
+    """``P(u)`` of the power coefficients ``c``, for a float or an array of ``u``."""
     return c[0] + u * (c[1] + u * (c[2] + u * c[3]))
 
 
@@ -112,7 +113,7 @@ def samples_disagree(c, deltas: tuple[float, float], f_lo: float, f_hi: float) -
     if max(map(abs, deltas)) > MODEL_TOL * max(map(abs, values)):
         return True
     u = np.linspace(0.0, 1.0, ZERO_COUNT_GRID + 1)[1:-1]
-    p = c[0] + u * (c[1] + u * (c[2] + u * c[3]))
+    p = cubic_value(c, u)
     q = p + (u * (1.0 - u)) ** 2 * (alpha + beta * u)
     return sign_changes([f_lo, *p.tolist(), f_hi]) != sign_changes([f_lo, *q.tolist(), f_hi])
 

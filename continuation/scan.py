@@ -289,14 +289,9 @@ class StepScan:
             # the model stays above CLEAR times its smaller end value: samples whose error
             # term stays within 1/NEAR_ZERO of that are trusted (samples_disagree)
             a, b = self.nodes
-            f_a, f_b = a.events[j], b.events[j]
-            m_a, m_b = (b.s - a.s) * self.slope(a, j), (b.s - a.s) * self.slope(b, j)
-            first, second = self._arc_values(a, b, j)
-            # the model at u = 1/3 and 2/3: f_a h00 + f_b h01 + m_a h10 + m_b h11 there
-            alpha, beta = error_term(
-                (first - (20.0 * f_a + 7.0 * f_b + 4.0 * m_a - 2.0 * m_b) / 27.0,
-                 second - (7.0 * f_a + 20.0 * f_b + 2.0 * m_a - 4.0 * m_b) / 27.0))
-            if NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 < CLEAR * min(abs(f_a), abs(f_b)):
+            alpha, beta = error_term(self._arc_deltas(a, b, j, model(a, b)))
+            if NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0 \
+                    < CLEAR * min(abs(a.events[j]), abs(b.events[j])):
                 return []  # (a sample that is not finite is checked on the curve below)
 
         finest = (self.nodes[-1].s - self.nodes[0].s) / 3.0 ** RESOLVE_DEPTH
@@ -304,9 +299,7 @@ class StepScan:
         def resolve(lo: Node, hi: Node, c, f_lo: float, f_hi: float) -> list[Node]:
             if hi.s - lo.s < 2.0 * finest:
                 return []
-            model_values = [cubic_value(c, u) for u in SAMPLES]
-            arc = self._arc_values(lo, hi, j)
-            deltas = (arc[0] - model_values[0], arc[1] - model_values[1])
+            deltas = self._arc_deltas(lo, hi, j, c)
             if all(map(math.isfinite, deltas)) and not samples_disagree(c, deltas, f_lo, f_hi):
                 return []
             # checked on the curve: the arc is O(h^4) off it, which moves an event that is
@@ -318,15 +311,17 @@ class StepScan:
                 # an event that vanishes identically along a stretch: a node there would read
                 # as a crossing where the event does not change sign
                 return []
-            deltas = (nodes[0].events[j] - model_values[0], nodes[1].events[j] - model_values[1])
+            deltas = (nodes[0].events[j] - cubic_value(c, SAMPLES[0]),
+                      nodes[1].events[j] - cubic_value(c, SAMPLES[1]))
             return nodes if samples_disagree(c, deltas, f_lo, f_hi) else []
 
         return self._brackets(lambda node: node.events[j], model, direction, list(self.nodes),
                               resolve)
 
-    def _arc_values(self, lo: Node, hi: Node, j: int) -> tuple[float, float]:
+    def _arc_deltas(self, lo: Node, hi: Node, j: int, c) -> tuple[float, float]:
         """Event ``j`` at :data:`SAMPLES` of the interval's cubic Hermite arc (not corrected:
-        ``O(h^4)`` off the curve; computed once per interval and event, may be NaN)."""
+        ``O(h^4)`` off the curve; evaluated once per interval and event) less its model ``c``
+        there; NaN where the event is not finite."""
         key = (lo.s, hi.s, j)
         values = self._arc_events.get(key)
         if values is None:
@@ -335,7 +330,7 @@ class StepScan:
             values = (event_value(event, points[0], self.describe),
                       event_value(event, points[1], self.describe))
             self._arc_events[key] = values
-        return values
+        return values[0] - cubic_value(c, SAMPLES[0]), values[1] - cubic_value(c, SAMPLES[1])
 
     def _sample_nodes(self, lo: Node, hi: Node) -> list[Node]:
         """The curve points at :data:`SAMPLES` of the interval, corrected (once per interval,
