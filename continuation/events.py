@@ -39,11 +39,20 @@ class Event:
         inside one step and the side of a zero at the start; ``None``
         (default) takes a central difference of ``function`` along the
         tangent (two more calls of ``function`` per point).
+    linear : bool, optional
+        Whether ``function`` is affine, ``g(x) = a . x + b`` with ``gradient``
+        returning ``a`` (required then). Along a step, ``g`` of the step's
+        cubic Hermite arc is then exactly the event's cubic model (the model's
+        slopes at the ends are ``a . t``, the arc's derivatives ``t``), so the
+        samples described below could only repeat the model: they are skipped,
+        two calls of ``function`` per step fewer. The zeros are the same, since
+        such an event changes no faster than the curve's coordinates, which
+        the step control resolves. Default ``False``.
 
     Notes
     -----
-    ``function`` is also called at a third and two thirds of every step, on
-    the step's cubic Hermite arc; where those values disagree with the
+    ``function`` (unless ``linear``) is also called at a third and two thirds
+    of every step, on the step's cubic Hermite arc; where those values disagree with the
     event's cubic model near zero, they are computed again on the curve and,
     if they still disagree, the step is split there and its parts checked the
     same way, down to a 27th of the step. In random tests this found every
@@ -52,8 +61,8 @@ class Event:
     what falls between them (a narrower dip, an oscillation whose period
     fits the samples), so an event that changes on a scale much shorter
     than the steps needs ``ds_max`` below that scale to be sure of its
-    zeros. The models assume an event that is smooth along the curve,
-    finite on it (where it is not, the run ends with ``EVENT_NOT_FINITE``)
+    zeros. The models assume an event that is smooth along the curve, finite
+    on it (where it is not, the run ends with ``EVENT_NOT_FINITE``)
     and changing by more than the corrector's tolerance: kinks, stretches
     where it vanishes identically, or an event that is zero on the whole
     curve can be misread.
@@ -71,6 +80,7 @@ class Event:
     direction: int = 0
     terminal: bool = False
     gradient: Callable[[np.ndarray], np.ndarray] | None = None
+    linear: bool = False
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str):
@@ -85,6 +95,11 @@ class Event:
             raise TypeError(f"Event.terminal must be True or False, got {self.terminal!r}")
         if self.gradient is not None and not callable(self.gradient):
             raise TypeError(f"Event.gradient must be callable or None, got {self.gradient!r}")
+        if not isinstance(self.linear, bool):
+            raise TypeError(f"Event.linear must be True or False, got {self.linear!r}")
+        if self.linear and self.gradient is None:
+            raise ValueError(f"Event '{self.name}' is declared linear but has no gradient: "
+                             "give the constant gradient a of g(x) = a . x + b")
 
 
 def box_events(
@@ -108,7 +123,7 @@ def box_events(
         For a lower bound ``L`` on coordinate ``i`` an event named
         ``"x[i] >= L"`` with function ``x[i] - L`` and direction ``-1``; for an
         upper bound ``U`` one named ``"x[i] <= U"`` with function ``x[i] - U``
-        and direction ``+1``. All terminal.
+        and direction ``+1``. All terminal, and ``linear``.
 
     Raises
     ------
@@ -131,10 +146,12 @@ def box_events(
     events = []
     for i, bound in sorted(lows.items()):
         offset = _Offset(i, bound)
-        events.append(Event(f"{label(i)} >= {bound!r}", offset, -1, True, offset.gradient))
+        events.append(Event(f"{label(i)} >= {bound!r}", offset, -1, True, offset.gradient,
+                            linear=True))
     for i, bound in sorted(highs.items()):
         offset = _Offset(i, bound)
-        events.append(Event(f"{label(i)} <= {bound!r}", offset, 1, True, offset.gradient))
+        events.append(Event(f"{label(i)} <= {bound!r}", offset, 1, True, offset.gradient,
+                            linear=True))
     return events
 
 

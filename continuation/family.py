@@ -91,7 +91,7 @@ class Family:
         gradient = None if gradient_z is None else (
             lambda x: np.asarray(gradient_z(np.append(x, p)), dtype=float)[:-1])
         return Event(event.name, lambda x: event.function(np.append(x, p)), event.direction,
-                     event.terminal, gradient)
+                     event.terminal, gradient, event.linear)
 
     # --- derivatives in z = (x, p) ----------------------------------------------------------
     def names_z(self, n1: int) -> tuple[str, ...]:

@@ -277,7 +277,7 @@ class StepScan:
         ``u = 1/3`` and ``2/3`` disagrees with the model near zero (:func:`samples_disagree`),
         on the Hermite arc and again on the curve, is split there, down to
         ``1/3**RESOLVE_DEPTH`` of the step, so an event that changes faster than the step
-        shows its zeros.
+        shows its zeros (not for a ``linear`` event, whose model is exact on the arc).
         """
 
         def model(lo: Node, hi: Node):
@@ -285,7 +285,11 @@ class StepScan:
             return cubic(lo.events[j], width * self.slope(lo, j),
                          hi.events[j], width * self.slope(hi, j))
 
+        # an affine event on the arc is its model: samples could only repeat it (Event.linear)
+        linear = self.events[j].linear
         if len(self.nodes) == 2 and self._clear(j):
+            if linear:
+                return []
             # the model stays above CLEAR times its smaller end value: samples whose error
             # term stays within 1/NEAR_ZERO of that are trusted (samples_disagree)
             a, b = self.nodes
@@ -297,7 +301,7 @@ class StepScan:
         finest = (self.nodes[-1].s - self.nodes[0].s) / 3.0 ** RESOLVE_DEPTH
 
         def resolve(lo: Node, hi: Node, c, f_lo: float, f_hi: float) -> list[Node]:
-            if hi.s - lo.s < 2.0 * finest:
+            if linear or hi.s - lo.s < 2.0 * finest:
                 return []
             deltas = self._arc_deltas(lo, hi, j, c)
             if all(map(math.isfinite, deltas)) and not samples_disagree(c, deltas, f_lo, f_hi):

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 
 from groove_model.model.boundaries import (
     BOUNDARY_NAMES,
+    BoundarySystem,
     boundary_system,
     corner_point,
     dr_no_roll_branch_point,
@@ -46,6 +47,24 @@ def test_jacobian_matches_central_differences(name, chart, x, k, c):
     assert np.max(np.abs(J - J_fd)) <= 1e-6 * scale
     H, J2 = system.residual_and_jacobian(x)
     assert np.array_equal(H, system.residual(x)) and np.array_equal(J, J2)
+
+
+@pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
+@pytest.mark.parametrize("name", BOUNDARY_NAMES)
+@settings(max_examples=40, deadline=None)
+@given(x=interior_points(), k=st.floats(1e-4, 1e6), c=st.sampled_from([1.0, 0.6]),
+       scale=st.sampled_from([1.0, 0.05]))
+def test_validity_gradients_match_central_differences(name, chart, x, k, c, scale):
+    if chart == "beta_L":
+        scale = 1.0
+    system = BoundarySystem(name, Parameters(k, Compliance(c)), chart, scale)
+    y = system.from_x(x)
+    assert set(system.validity_gradient) == set(system.validity)
+    for condition, function in system.validity.items():
+        gradient = system.validity_gradient[condition](y)
+        assert gradient.shape == (4,)
+        fd = central_differences(lambda v, f=function: np.array([f(v)]), y)[0]
+        assert np.max(np.abs(gradient - fd)) <= 1e-7 * (1.0 + np.abs(gradient).max())
 
 
 @pytest.mark.parametrize("k", [0.1, 1.0, math.sqrt(2), 10.0])

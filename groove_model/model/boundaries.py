@@ -253,6 +253,9 @@ class BoundarySystem:
     validity : dict of Condition to callable
         ``condition -> f(x)`` at chart coordinates, ``f >= 0`` where the boundary is physical
         (its regime valid).
+    validity_gradient : dict of Condition to callable
+        ``condition -> grad f(x)`` (floats, shape (4,)), derived by hand and checked against
+        central differences in the tests.
     certified_validity : dict of Condition to callable
         The same conditions in the form certification uses: the validity function itself,
         except ``T/N_R <= k`` on ``dr_limit``, which on the limit curve has the sign of
@@ -271,6 +274,7 @@ class BoundarySystem:
     conditioned: bool = False
     regime: str = field(init=False)
     validity: dict = field(init=False, repr=False, compare=False)
+    validity_gradient: dict = field(init=False, repr=False, compare=False)
     certified_validity: dict = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -302,6 +306,22 @@ class BoundarySystem:
             beta_L = y[2] * y[2] if sqrt_chart else y[2]
             return (c * (numbers.cos(beta_L) + y[3]) - k * numbers.sin(beta_L)) / r
 
+        def tn_left_gradient(y):
+            w = y[2]
+            beta_L, d_beta = (w * w, 2.0 * w) if sqrt_chart else (w, 1.0)
+            slope = (k * math.cos(beta_L) + c * math.sin(beta_L)) / r
+            return np.array([0.0, 0.0, slope * d_beta, -c / r])
+
+        def tn_right_gradient(y):
+            w = y[2]
+            beta_L, d_beta = (w * w, 2.0 * w) if sqrt_chart else (w, 1.0)
+            beta_R = math.pi - 2.0 * scale * y[0] - beta_L
+            slope = (k * math.cos(beta_R) + c * math.sin(beta_R)) / r
+            return np.array([-2.0 * scale * slope, 0.0, -slope * d_beta, c / r])
+
+        def slip_left_gradient(y):
+            return -tn_left_gradient(y)
+
         def limit_margin(y, numbers=FLOATS):
             gamma = scale * y[0]
             return (k * numbers.cos(gamma) - c * numbers.sin(gamma)) / r
@@ -312,11 +332,16 @@ class BoundarySystem:
             "dr_no_roll": {Condition.T_OVER_N_L: tn_left, Condition.T_OVER_N_R: tn_right},
             "rs_no_roll": {Condition.SLIP_LEFT: slip_left},
         }[self.name]
+        gradients = {Condition.T_OVER_N_L: tn_left_gradient,
+                     Condition.T_OVER_N_R: tn_right_gradient,
+                     Condition.SLIP_LEFT: slip_left_gradient}
         certified = dict(checks)
         if self.name == "dr_limit":
             certified[Condition.T_OVER_N_R] = limit_margin
         object.__setattr__(self, "regime", REGIME_OF[self.name])
         object.__setattr__(self, "validity", checks)
+        object.__setattr__(self, "validity_gradient", {condition: gradients[condition]
+                                                        for condition in checks})
         object.__setattr__(self, "certified_validity", certified)
 
     def _unscaled(self, y) -> list:

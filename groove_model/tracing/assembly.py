@@ -72,10 +72,11 @@ class Tagged:
     certified: Callable | None = None
 
 
-def _edge(name: str, role: Role, function, gradient, certified=None) -> Tagged:
-    """A terminal event for leaving the domain (its function decreases through zero)."""
-    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient), role,
-                  certified=certified)
+def _edge(name: str, role: Role, function, gradient, certified=None, linear=True) -> Tagged:
+    """A terminal event for leaving the domain (its function decreases through zero); most are
+    affine in the chart coordinates (``Event.linear``)."""
+    return Tagged(Event(name, function, direction=-1, terminal=True, gradient=gradient,
+                        linear=linear), role, certified=certified)
 
 
 def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
@@ -102,9 +103,11 @@ def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
         edge_gamma = (system.edge_function, None)
     else:
         edge_gamma = (lambda y, numbers=FLOATS: y[0] - y[1], unit(1, -1, 0, 0))
+    linear_gamma = not system.name.endswith("no_roll")
     return [
         _edge("delta = 0", Role.DOMAIN_EDGE, lambda y, numbers=FLOATS: y[1], unit(0, 1, 0, 0)),
-        _edge("delta = gamma", Role.DOMAIN_EDGE, *edge_gamma, certified=system.edge_function),
+        _edge("delta = gamma", Role.DOMAIN_EDGE, *edge_gamma, certified=system.edge_function,
+              linear=linear_gamma),
         _edge("gamma = pi/2", Role.DOMAIN_EDGE,
               lambda y, numbers=FLOATS: 0.5 * numbers.pi / g - y[0], unit(-1, 0, 0, 0)),
         _edge("gamma = gamma_min", Role.GAMMA_MIN, lambda y, numbers=FLOATS: y[0] - low,
@@ -112,14 +115,15 @@ def domain_events(system: BoundarySystem, gamma_min: float) -> list[Tagged]:
         _edge("beta_L = 0", Role.CORNER, lambda y, numbers=FLOATS: y[2], unit(0, 0, 1, 0)),
         _edge("beta_R = 0", Role.DOMAIN_EDGE,
               lambda y, numbers=FLOATS: numbers.pi - 2.0 * g * y[0] - y[2] * y[2],
-              lambda y: np.array([-2.0 * g, 0.0, -2.0 * y[2], 0.0])),
+              lambda y: np.array([-2.0 * g, 0.0, -2.0 * y[2], 0.0]), linear=False),
     ]
 
 
 def validity_events(system: BoundarySystem) -> list[Tagged]:
     """An event per validity condition of the boundary's regime (certified in the form of
     :attr:`BoundarySystem.certified_validity`)."""
-    return [Tagged(Event(f"validity {condition.value}", f), Role.VALIDITY, condition,
+    return [Tagged(Event(f"validity {condition.value}", f,
+                         gradient=system.validity_gradient[condition]), Role.VALIDITY, condition,
                    certified=system.certified_validity[condition])
             for condition, f in system.validity.items()]
 

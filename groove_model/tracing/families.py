@@ -195,10 +195,12 @@ class BoundaryFamily:
         return function
 
 
-def _unit(index: int):
+def _unit(index: int, other: float = 0.0, other_index: int = 0):
+    """The constant gradient ``e_index`` (plus ``other e_other_index``) of an affine event."""
     def gradient(z):
         unit = np.zeros(len(z))
         unit[index] = 1.0
+        unit[other_index] += other
         return unit
     return gradient
 
@@ -208,10 +210,11 @@ def domain_events(family: BoundaryFamily) -> list[Event]:
     or ``beta_L, beta_R >= 0``; ``delta = 0`` is where one is born or dies on the axis."""
     half_pi = 0.5 * math.pi
     return [
-        Event("delta = 0", lambda z: z[1], -1, True, _unit(1)),
-        Event("delta = gamma", lambda z: z[0] - z[1], -1, True),
+        Event("delta = 0", lambda z: z[1], -1, True, _unit(1), linear=True),
+        Event("delta = gamma", lambda z: z[0] - z[1], -1, True, _unit(0, -1.0, 1),
+              linear=True),
         Event("gamma = pi/2", lambda z: half_pi - family.scale(z[-1]) * z[0], -1, True),
-        Event("beta_L = 0", lambda z: z[2], -1, True, _unit(2)),
+        Event("beta_L = 0", lambda z: z[2], -1, True, _unit(2), linear=True),
         Event("beta_R = 0", lambda z: math.pi - 2.0 * family.scale(z[-1]) * z[0] - z[2] ** 2,
               -1, True),
     ]
@@ -263,7 +266,8 @@ def special_points(family: BoundaryFamily, p: float):
         start = limit_seed(params)
     if family.scaled:
         floor = min(GAMMA_MIN, 1e-3 / family.scale(p))
-        events.append(Event("gamma = gamma_min", lambda z: z[0] - floor, -1, True, _unit(0)))
+        events.append(Event("gamma = gamma_min", lambda z: z[0] - floor, -1, True, _unit(0),
+                            linear=True))
     curve = _start_trace(family, p, family.from_x(start, p), _at_p(events, p, family.family),
                          (0, 1))
     if not curve.ok:

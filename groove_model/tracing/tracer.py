@@ -258,7 +258,7 @@ class _Job:
         system = BoundarySystem("dr_limit", params, "sqrt_beta_L", scale, conditioned=True)
         tagged = [*self._events(system),
                   Tagged(Event("upsilon = 0", lambda y, numbers=FLOATS: y[3],
-                               gradient=lambda y: _UPSILON),
+                               gradient=lambda y: _UPSILON, linear=True),
                          Role.NO_ROLL)]
         self.traced["dr_limit"] = self.traced["rs_limit"] = (system, tagged)
         engine = trace_curve(system, system.from_x(self.seed), _UP, self.options, tagged)

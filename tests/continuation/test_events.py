@@ -83,6 +83,45 @@ def test_event_validation():
         Event("e", 1.0)
 
 
+def test_linear_event_validation():
+    with pytest.raises(ValueError, match="declared linear but has no gradient"):
+        Event("e", lambda x: x[0], linear=True)
+    with pytest.raises(TypeError, match="Event.linear must be True or False"):
+        Event("e", lambda x: x[0], gradient=lambda x: np.array([1.0, 0.0]), linear=1)
+    assert all(e.linear for e in box_events({0: -1.0}, {1: 2.0}))
+
+
+def _counted(function):
+    calls = []
+
+    def counted(x):
+        calls.append(1)
+        return function(x)
+    return counted, calls
+
+
+@pytest.mark.parametrize("direction", [0, 1, -1])
+def test_a_linear_event_has_the_same_zeros_for_fewer_calls(circle, direction):
+    # x - 0.3 y + 0.1 crosses zero twice on the unit circle; declared linear it is not
+    # sampled inside the steps, and its zeros (located on the curve) are the same
+    gradient = np.array([1.0, -0.3])
+    results = []
+    for linear in (False, True):
+        function, calls = _counted(lambda x: x[0] - 0.3 * x[1] + 0.1)
+        event = Event("line", function, direction, gradient=lambda x: gradient, linear=linear)
+        curve = trace(circle, [1.0, 0.0], events=[event])
+        assert curve.ok
+        results.append(([p.x for p in curve.special("event")], len(calls), curve.x))
+    (zeros, sampled_calls, x), (linear_zeros, linear_calls, linear_x) = results
+    assert len(zeros) == (2 if direction == 0 else 1)
+    assert np.array_equal(np.array(zeros), np.array(linear_zeros))
+    assert np.array_equal(x, linear_x)
+    assert linear_calls <= sampled_calls - (len(x) - 1)
+    for point in linear_zeros:
+        assert abs(point[0] - 0.3 * point[1] + 0.1) <= 1e-12
+        assert abs(math.hypot(*point) - 1.0) <= 1e-12
+
+
 def test_max_arclength_is_exact(circle):
     curve = trace(circle, [1.0, 0.0], options=Options(max_arclength=1.0))
     assert curve.status is Status.MAX_ARCLENGTH and curve.ok
