@@ -85,6 +85,9 @@ CURVATURE_STEP = 1e-7
 _SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0
 
 
+_FLOAT = np.dtype(float)
+
+
 class LocateError(RuntimeError):
     """A special point was bracketed but could not be located (or a scan not resolved)."""
 
@@ -148,7 +151,11 @@ def _event_slope(event: Event, node: Node, describe) -> float:
     x, t = node.x, node.tangent
     if event.gradient is not None:
         try:
-            gradient = np.asarray(event.gradient(x))
+            gradient = event.gradient(x)
+            if type(gradient) is np.ndarray and gradient.dtype == _FLOAT \
+                    and gradient.shape == x.shape:
+                return float(gradient @ t)  # the common case, without the checks below
+            gradient = np.asarray(gradient)
             if gradient.dtype.kind == "c":
                 raise TypeError(f"it returned complex values (dtype {gradient.dtype}), not real")
             gradient = gradient.astype(float, copy=False)
@@ -280,16 +287,18 @@ class StepScan:
         shows its zeros (not for a ``linear`` event, whose model is exact on the arc).
         """
 
+        # an affine event on the arc is its model: samples could only repeat it (Event.linear)
+        linear = self.events[j].linear
+        clear = len(self.nodes) == 2 and self._clear(j)
+        if clear and linear:
+            return []
+
         def model(lo: Node, hi: Node):
             width = hi.s - lo.s
             return cubic(lo.events[j], width * self.slope(lo, j),
                          hi.events[j], width * self.slope(hi, j))
 
-        # an affine event on the arc is its model: samples could only repeat it (Event.linear)
-        linear = self.events[j].linear
-        if len(self.nodes) == 2 and self._clear(j):
-            if linear:
-                return []
+        if clear:
             # the model stays above CLEAR times its smaller end value: samples whose error
             # term stays within 1/NEAR_ZERO of that are trusted (samples_disagree)
             a, b = self.nodes
@@ -354,8 +363,8 @@ class StepScan:
         if points is None:
             # x_lo h00 + x_hi h01 + h (t_lo h10 + t_hi h11) at u = 1/3 and 2/3, in one product
             width = hi.s - lo.s
-            both = _SAMPLE_BASIS @ np.vstack((lo.x, hi.x, width * lo.tangent,
-                                              width * hi.tangent))
+            both = _SAMPLE_BASIS @ np.array((lo.x, hi.x, width * lo.tangent,
+                                             width * hi.tangent))
             points = (both[0], both[1])
             self._samples[key] = points
         return points
