@@ -47,7 +47,11 @@ class Event:
         samples described below could only repeat the model: they are skipped,
         two calls of ``function`` per step fewer. The zeros are the same, since
         such an event changes no faster than the curve's coordinates, which
-        the step control resolves. Default ``False``.
+        the step control resolves. The gradient is evaluated once per run, and
+        every step checks ``g(x_b) - g(x_a) = a . (x_b - x_a)`` (to 1e-9 of the
+        sizes involved): a function declared linear that is not stops the run
+        with a :class:`~continuation.CallbackError` instead of losing zeros.
+        Default ``False``.
 
     Notes
     -----

@@ -12,7 +12,7 @@ from .events import Event
 from .options import Options
 from .problem import Evaluator, Problem
 from .result import Curve, SpecialPoint, Status
-from .scan import EventNotFinite, Node, event_value
+from .scan import EventNotFinite, LinearEvents, Node, event_value
 
 __all__ = ["Run"]
 
@@ -35,6 +35,8 @@ class Run:
         self.residuals: list[float] = []
         self.special: list[SpecialPoint] = []
         self.rejected = 0
+        #: the linear events and their constant gradients, evaluated once
+        self.linear = LinearEvents(events)
 
     def node(self, x, s, tangent, det, residual, iterations, jacobian=None) -> Node:
         """A curve point with its event values; :class:`EventNotFinite` if one is not finite.

@@ -49,7 +49,8 @@ def scan_step(run: Run, a: Node, b: Node) -> list[Found]:
     """
     options, evaluator = run.options, run.evaluator
     describe = run.problem.describe
-    scan = StepScan(evaluator, options, run.events, a, b)
+    scan = StepScan(evaluator, options, run.events, a, b, run.linear)
+    scan.check_linear_events()
     found: list[Found] = []
     what = "a special point"
     try:

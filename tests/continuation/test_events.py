@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from continuation import Event, Options, Status, box_events, trace
+from continuation import CallbackError, Event, Options, Status, box_events, trace
 
 
 def test_box_exit_is_exact(circle):
@@ -120,6 +120,20 @@ def test_a_linear_event_has_the_same_zeros_for_fewer_calls(circle, direction):
     for point in linear_zeros:
         assert abs(point[0] - 0.3 * point[1] + 0.1) <= 1e-12
         assert abs(math.hypot(*point) - 1.0) <= 1e-12
+
+
+def test_an_event_declared_linear_that_is_not_fails_loudly(circle):
+    # x^2 has zeros the samples it is spared would show; declared linear it must not pass
+    event = Event("x^2 - 0.3", lambda x: x[0] ** 2 - 0.3, gradient=lambda x: np.array([1.0, 0.0]),
+                  linear=True)
+    with pytest.raises(CallbackError, match="'x\\^2 - 0.3' is declared linear but is not affine "
+                       "along the curve") as raised:
+        trace(circle, [1.0, 0.0], events=[event])
+    assert raised.value.curve.status is Status.CALLBACK_FAILED
+    # an affine event with a gradient that is not finite is refused as well
+    bad = Event("x", lambda x: x[0], gradient=lambda x: np.array([np.nan, 0.0]), linear=True)
+    with pytest.raises(CallbackError, match="gradient of event 'x' is not finite"):
+        trace(circle, [1.0, 0.0], events=[bad])
 
 
 def test_max_arclength_is_exact(circle):
