@@ -9,10 +9,11 @@ import numpy as np
 
 from .errors import ContinuationError
 from .events import Event
+from .linear import LinearEvents
 from .options import Options
 from .problem import Evaluator, Problem
 from .result import Curve, SpecialPoint, Status
-from .scan import EventNotFinite, LinearEvents, Node, event_value
+from .scan import EventNotFinite, Node, event_value
 
 __all__ = ["Run"]
 

@@ -43,13 +43,13 @@ from .cubic import (
 from .errors import CallbackError
 from .events import Event, crossed
 from .linalg import max_abs, norm
+from .linear import LinearEvents, event_gradient
 from .options import Options
 from .predictor import hermite
 from .problem import Evaluator
 
 __all__ = [
     "EventNotFinite",
-    "LinearEvents",
     "LocateError",
     "Node",
     "StepScan",
@@ -79,19 +79,11 @@ _TINY = 1e-300
 #: a tangent component at most this large at a terminal point is a zero there
 TERMINAL_NOISE = 1e-10
 
-#: a linear event's change over a step may differ from its gradient's prediction by at most
-#: this fraction of the sizes involved (rounding is some 1e-16 of them, a curved event's
-#: deviation over a step of the curve many orders more)
-AFFINE_TOL = 1e-9
-
 #: relative step of the central difference of the Jacobian along the tangent (curvature)
 CURVATURE_STEP = 1e-7
 
 #: the cubic Hermite basis (h00, h01, h10, h11) at SAMPLES, the rows of u = 1/3 and 2/3
 _SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0
-
-
-_FLOAT = np.dtype(float)
 
 
 class LocateError(RuntimeError):
@@ -152,64 +144,15 @@ def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], st
                             f"x={describe(x)}") from exc
 
 
-def _event_gradient(event: Event, x: np.ndarray, describe) -> np.ndarray:
-    """``event.gradient(x)`` as a float array of the shape of ``x``; a raised exception or a
-    wrong result becomes a :class:`CallbackError`."""
-    function = event.gradient
-    if function is None:
-        raise TypeError(f"event '{event.name}' has no gradient")
-    try:
-        gradient = function(x)
-        if type(gradient) is np.ndarray and gradient.dtype == _FLOAT \
-                and gradient.shape == x.shape:
-            return gradient  # the common case, without the checks below
-        gradient = np.asarray(gradient)
-        if gradient.dtype.kind == "c":
-            raise TypeError(f"it returned complex values (dtype {gradient.dtype}), not real")
-        gradient = gradient.astype(float, copy=False)
-    except Exception as exc:
-        raise CallbackError(f"gradient of event '{event.name}' raised "
-                            f"{type(exc).__name__}: {exc} at x={describe(x)}") from exc
-    if gradient.shape != x.shape:
-        raise CallbackError(f"gradient of event '{event.name}' returned shape "
-                            f"{gradient.shape}, expected {x.shape}")
-    return gradient
-
-
 def _event_slope(event: Event, node: Node, describe) -> float:
     """``d g / ds = grad g . t`` at a node: from ``event.gradient`` or a central difference."""
     x, t = node.x, node.tangent
     if event.gradient is not None:
-        return float(_event_gradient(event, x, describe) @ t)
+        return float(event_gradient(event, x, describe) @ t)
     step = SLOPE_STEP * (1.0 + max_abs(x))
     forward, backward = x + step * t, x - step * t
     width = float((forward - backward) @ t)
     return (event_value(event, forward, describe) - event_value(event, backward, describe)) / width
-
-
-class LinearEvents:
-    """The linear events of a run (``Event.linear``) and their constant gradients, evaluated
-    once, at the first step that needs them, as the rows of one matrix."""
-
-    def __init__(self, events: Sequence[Event]) -> None:
-        self.indices = [j for j, event in enumerate(events) if event.linear]
-        self.rows = {j: row for row, j in enumerate(self.indices)}
-        self._matrix: np.ndarray | None = None
-        #: ``|a_ij|``, the sizes of the terms of each prediction
-        self.magnitudes = np.zeros((0, 0))
-
-    def matrix(self, scan: StepScan) -> np.ndarray:
-        """The gradients (one row per linear event), evaluated at the scan's first node."""
-        if self._matrix is None:
-            x = scan.nodes[0].x
-            rows = [_event_gradient(scan.events[j], x, scan.describe) for j in self.indices]
-            for j, row in zip(self.indices, rows, strict=True):
-                if not all(map(math.isfinite, row.tolist())):
-                    raise CallbackError(f"gradient of event '{scan.events[j].name}' is not "
-                                        f"finite at x={scan.describe(x)}")
-            self._matrix = np.array(rows, dtype=float).reshape(len(rows), x.size)
-            self.magnitudes = np.abs(self._matrix)
-        return self._matrix
 
 
 class StepScan:
@@ -323,29 +266,11 @@ class StepScan:
 
     def linear_gradient(self, j: int) -> np.ndarray:
         """The constant gradient of linear event ``j`` (:class:`LinearEvents`)."""
-        return self.linear.matrix(self)[self.linear.rows[j]]
+        return self.linear.gradients(self.nodes[0].x, self.describe)[self.linear.rows[j]]
 
     def check_linear_events(self) -> None:
-        """:class:`CallbackError` if a linear event changed over the step by more than its
-        gradient allows: ``g(b) - g(a) = a . (x_b - x_a)`` for an affine ``g``, to
-        :data:`AFFINE_TOL` of the sizes involved. A function declared linear that is not would
-        have the zeros that its skipped samples show missed without a word."""
-        linear = self.linear
-        if not linear.indices:
-            return
-        a, b = self.nodes[0], self.nodes[-1]
-        gradients = linear.matrix(self)
-        chord = b.x - a.x
-        predicted = (gradients @ chord).tolist()
-        sizes = (linear.magnitudes @ np.abs(chord)).tolist()
-        for j, change, size in zip(linear.indices, predicted, sizes, strict=True):
-            f_a, f_b = a.events[j], b.events[j]
-            if not abs(f_b - f_a - change) <= AFFINE_TOL * (abs(f_a) + abs(f_b) + size):
-                raise CallbackError(
-                    f"event '{self.events[j].name}' is declared linear but is not affine along "
-                    f"the curve: from x={self.describe(a.x)} to x={self.describe(b.x)} it "
-                    f"changed by {f_b - f_a!r}, its gradient gives {change!r}; declare it "
-                    "linear=False")
+        """:meth:`LinearEvents.check` over the whole step."""
+        self.linear.check(self.nodes[0], self.nodes[-1], self.describe)
 
     # --- brackets -----------------------------------------------------------------------
     def event_brackets(self, j: int, direction: int = 0) -> list[tuple[Node, Node, float, float]]:
