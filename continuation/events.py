@@ -45,13 +45,15 @@ class Event:
         cubic Hermite arc is then exactly the event's cubic model (the model's
         slopes at the ends are ``a . t``, the arc's derivatives ``t``), so the
         samples described below could only repeat the model: they are skipped,
-        two calls of ``function`` per step fewer. The zeros are the same, since
-        such an event changes no faster than the curve's coordinates, which
-        the step control resolves. The gradient is evaluated once per run, and
-        every step checks ``g(x_b) - g(x_a) = a . (x_b - x_a)`` (to 1e-9 of the
-        sizes involved): a function declared linear that is not stops the run
-        with a :class:`~continuation.CallbackError` instead of losing zeros.
-        Default ``False``.
+        two calls of ``function`` per step fewer, and the zeros are the same.
+        The gradient is evaluated once per run, and every step checks
+        ``g(x_b) - g(x_a) = a . (x_b - x_a)`` (to 1e-9 of the sizes involved,
+        plus the rounding of ``g``): a function declared linear whose change
+        over a step disagrees with its gradient stops the run with a
+        :class:`~continuation.CallbackError`. The check sees the step's ends
+        only: a deviation from ``a . x + b`` that vanishes at both ends of
+        every step (a bump between two nodes) passes it and its zeros are
+        lost, so declare linear only what is affine. Default ``False``.
 
     Notes
     -----

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from continuation import CallbackError, Event, Options, Status, box_events, trace
+from continuation import CallbackError, Event, Options, Problem, Status, box_events, trace
 
 
 def test_box_exit_is_exact(circle):
@@ -134,6 +134,28 @@ def test_an_event_declared_linear_that_is_not_fails_loudly(circle):
     bad = Event("x", lambda x: x[0], gradient=lambda x: np.array([np.nan, 0.0]), linear=True)
     with pytest.raises(CallbackError, match="gradient of event 'x' is not finite"):
         trace(circle, [1.0, 0.0], events=[bad])
+
+
+@pytest.mark.parametrize(("centre", "radius"), [(1e3, 1e-4), (1e6, 1.0), (1e5, 1e-2)])
+def test_an_affine_event_far_from_the_origin_passes_the_check(centre, radius):
+    # x + y - 2c on a small circle around (c, c): the terms cancel to far less than their
+    # rounding (some 1e-16 of |x|), which the affine check must allow for, not report
+    circle = Problem(lambda x: np.array([(x[0] - centre) ** 2 + (x[1] - centre) ** 2
+                                         - radius ** 2]),
+                     lambda x: np.array([[2 * (x[0] - centre), 2 * (x[1] - centre)]]))
+    options = Options(ds=0.05 * radius, ds_max=0.2 * radius)
+    zeros = []
+    for linear in (False, True):
+        event = Event("x + y = 2c", lambda x: x[0] + x[1] - 2 * centre,
+                      gradient=lambda x: np.array([1.0, 1.0]), linear=linear)
+        curve = trace(circle, [centre + radius, centre], events=[event], options=options)
+        assert curve.status is Status.CLOSED
+        zeros.append(np.array([p.x for p in curve.special("event")]))
+    assert zeros[0].shape == (2, 2)
+    assert np.array_equal(zeros[0], zeros[1])
+    for x, y in zeros[1]:  # on the circle (to tol) and on the line (to the rounding of x, y)
+        assert abs((x - centre) ** 2 + (y - centre) ** 2 - radius ** 2) <= 1e-10
+        assert abs((x - centre) + (y - centre)) <= 8 * np.finfo(float).eps * centre
 
 
 def test_max_arclength_is_exact(circle):
