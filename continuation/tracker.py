@@ -249,6 +249,9 @@ class _Stepper:
         truncated = h >= options.max_arclength - point.s
         try:
             new, closing = self._accepted_point(correction, alpha, truncated)
+            if not new.s > point.s:
+                self.status, self.message = _unresolved_step(run, point, self.steps, h)
+                return
             found = scan_step(run, point, new)
         except EventNotFinite as error:
             self.status, self.message = Status.EVENT_NOT_FINITE, (
@@ -435,6 +438,22 @@ def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
         f"{Status.STEP_TOO_SMALL.value} {where}; last rejection: {reason}. The curve may end, "
         "turn sharply or be singular here: check the residual and Jacobian near this point, "
         "loosen Options.tol, or lower Options.ds_min")
+
+
+def _unresolved_step(run: Run, point: Node, steps: int, h: float):
+    """Status and message when a step of ``h`` did not increase the arclength ``s``.
+
+    It moved no coordinate, or less than the rounding of ``s``: a smaller step could not
+    advance the curve either, so the run ends at once instead of halving down to ``ds_min``.
+    """
+    return Status.STEP_TOO_SMALL, (
+        f"no step can advance the curve: the step {h:.3g} after step {steps} at "
+        f"s={point.s:.12g}, x={run.problem.describe(point.x)} moved no coordinate or less "
+        f"than the rounding of s (the rounding of x is up to "
+        f"{np.spacing(np.abs(point.x)).max():.3g}), so the curve cannot be followed further "
+        "in floating point. Steps shrink like this where the corrector cannot meet Options.tol "
+        "(with large coordinates the residual's rounding may exceed it): shift and scale the "
+        "problem so that its coordinates near the curve are of order one, or loosen Options.tol")
 
 
 def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:

@@ -83,6 +83,20 @@ def test_step_too_small_names_where_and_what_to_change():
     assert curve.rejected_steps > 0
 
 
+def test_a_step_below_the_rounding_of_x_ends_the_run_loudly():
+    # the unit circle around (1e7, 1e7): the residual's rounding (some 1e-8) exceeds tol, the
+    # steps shrink until one moves no coordinate; that ends the run, it does not crash on a
+    # step of zero length
+    c = 1e7
+    problem = Problem(lambda x: np.array([(x[0] - c) ** 2 + (x[1] - c) ** 2 - 1.0]),
+                      lambda x: np.array([[2 * (x[0] - c), 2 * (x[1] - c)]]))
+    curve = trace(problem, [c + 1.0, c])
+    assert curve.status is Status.STEP_TOO_SMALL and not curve.ok
+    assert "moved no coordinate" in curve.message and "scale" in curve.message
+    assert np.all(np.diff(curve.s) > 0.0)
+    assert np.all(np.abs(curve.x[:, 0] - c) <= 1.0)
+
+
 def test_max_steps_is_a_normal_end(circle):
     curve = trace(circle, [1.0, 0.0], options=Options(max_steps=3))
     assert curve.status is Status.MAX_STEPS and curve.ok
