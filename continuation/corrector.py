@@ -54,6 +54,9 @@ class Correction:
         branch point it vanishes).
     jacobian : ndarray or None
         ``H'(x)`` where the tangent was computed from it (else ``None``).
+    remaining : float
+        2-norm of the Newton correction at the accepted ``x``, computed and not applied:
+        the estimate of its distance to the curve (0 when unknown).
     """
 
     __slots__ = (
@@ -65,6 +68,7 @@ class Correction:
         "jacobian",
         "ok",
         "reason",
+        "remaining",
         "residual",
         "tangent",
         "x",
@@ -83,6 +87,7 @@ class Correction:
         self.first_correction = first_correction
         self.contraction = contraction
         self.jacobian = None
+        self.remaining = 0.0
 
 
 def correct(
@@ -241,6 +246,7 @@ def correct(
             if within is None:
                 return failure(SINGULAR, rnorm, k)
             within.jacobian = J
+            within.remaining = length
             if small:
                 return within
             fallback = within

@@ -40,6 +40,11 @@ CLOSE_TOLERANCE = 1e-6
 #: at a singular start, the step's arc must pass this close to it (relative to the chord)
 ARC_CLOSE = 1e-3
 
+#: a corrected point whose next Newton correction (its distance to the curve) exceeds this
+#: fraction of the step is not a point of the curve at that step's resolution: the step is
+#: rejected (the tolerances, relative to ``1 + max|x|``, are too loose for the curve's scale)
+UNRESOLVED = 0.1
+
 
 def trace(
     problem: Problem,
@@ -120,7 +125,15 @@ def trace(
         f = max((kappa / kappa~)^(1/p), (delta / delta~)^(1/p), alpha / alpha~),
 
     where ``p`` is the order of the predictor error (2 Euler, 3 to 6 extrapolated).
-    A step exceeding a limit, or whose corrector fails, is rejected and halved.
+    A step exceeding a limit, or whose corrector fails, is rejected and halved; so is a
+    step whose corrected point meets the tolerances while its next Newton correction (the
+    estimate of its distance to the curve) exceeds ``UNRESOLVED = 0.1`` of the step, since
+    the tolerances (``tol`` on the residual, ``tol (1 + max|x|)`` on the corrections) then
+    do not resolve the curve on the step's scale (a curve much smaller than its distance
+    from the origin, or whose residual is below ``tol`` on a whole neighbourhood): the run
+    fails with ``STEP_TOO_SMALL`` and says so, where it would otherwise trace points off
+    the curve. A step that advances no coordinate (below their rounding) ends the run the
+    same way at once.
 
     The arclength of a step is its chord corrected by the angle ``alpha``
     between the end tangents, ``|x_b - x_a| (alpha/2) / sin(alpha/2)``; the
@@ -243,6 +256,14 @@ class _Stepper:
             if alpha > options.max_angle:
                 correction.ok = False
                 correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
+            elif correction.remaining > UNRESOLVED * h:
+                correction.ok = False
+                correction.reason = (
+                    f"the corrected point is within tol but its Newton correction, "
+                    f"{correction.remaining:.3g}, is more than {UNRESOLVED:g} of the step "
+                    f"{h:.3g}: Options.tol ({options.tol:.3g}, for the corrections relative to "
+                    "1 + max|x|) does not resolve the curve at this scale; lower it or scale "
+                    "the problem")
         if not correction.ok:
             self._reject(h, correction.reason, Status.STEP_TOO_SMALL)
             return
@@ -451,9 +472,10 @@ def _unresolved_step(run: Run, point: Node, steps: int, h: float):
         f"s={point.s:.12g}, x={run.problem.describe(point.x)} moved no coordinate or less "
         f"than the rounding of s (the rounding of x is up to "
         f"{np.spacing(np.abs(point.x)).max():.3g}), so the curve cannot be followed further "
-        "in floating point. Steps shrink like this where the corrector cannot meet Options.tol "
-        "(with large coordinates the residual's rounding may exceed it): shift and scale the "
-        "problem so that its coordinates near the curve are of order one, or loosen Options.tol")
+        "in floating point (the steps get this small where the corrector cannot meet "
+        "Options.tol, as where the residual's rounding exceeds it, or when Options.ds is set "
+        "this small): shift and scale the problem so that its coordinates near the curve are of "
+        "order one")
 
 
 def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:

@@ -84,17 +84,30 @@ def test_step_too_small_names_where_and_what_to_change():
 
 
 def test_a_step_below_the_rounding_of_x_ends_the_run_loudly():
-    # the unit circle around (1e7, 1e7): the residual's rounding (some 1e-8) exceeds tol, the
-    # steps shrink until one moves no coordinate; that ends the run, it does not crash on a
-    # step of zero length
-    c = 1e7
-    problem = Problem(lambda x: np.array([(x[0] - c) ** 2 + (x[1] - c) ** 2 - 1.0]),
-                      lambda x: np.array([[2 * (x[0] - c), 2 * (x[1] - c)]]))
-    curve = trace(problem, [c + 1.0, c])
+    # the line y = x through (1e7, 1e7) with steps of 1e-10, below the rounding of x (1.9e-9):
+    # a step that moves no coordinate ends the run, it does not crash on a zero-length step
+    problem = Problem(lambda x: np.array([x[1] - x[0]]), lambda x: np.array([[-1.0, 1.0]]))
+    curve = trace(problem, [1e7, 1e7], options=Options(ds=1e-10, ds_max=1e-10, ds_min=1e-12))
     assert curve.status is Status.STEP_TOO_SMALL and not curve.ok
     assert "moved no coordinate" in curve.message and "scale" in curve.message
+    assert len(curve) == 1
+
+
+@pytest.mark.parametrize(("centre", "radius"), [(1e7, 1e-6), (1e5, 1e-6), (0.0, 1e-9)])
+def test_tolerances_that_do_not_resolve_the_curve_end_the_run_loudly(centre, radius):
+    # circles smaller than the tolerances resolve: their residual r^2 is below tol inside
+    # them, and around (1e7, 0) the corrections' tolerance tol (1 + max|x|) is 1e-3, far more
+    # than r. Points within both but off the circle by much of a step once closed as a loop
+    # three times too long (status CLOSED); now the run fails and says why
+    problem = Problem(lambda x: np.array([(x[0] - centre) ** 2 + x[1] ** 2 - radius ** 2]),
+                      lambda x: np.array([[2 * (x[0] - centre), 2 * x[1]]]))
+    curve = trace(problem, [centre + radius, 0.0],
+                  options=Options(ds=radius / 10, ds_max=radius / 5, ds_min=1e-3 * radius))
+    assert curve.status is Status.STEP_TOO_SMALL and not curve.ok, curve.message
+    assert "scale" in curve.message
     assert np.all(np.diff(curve.s) > 0.0)
-    assert np.all(np.abs(curve.x[:, 0] - c) <= 1.0)
+    distance = np.abs(np.hypot(curve.x[:, 0] - centre, curve.x[:, 1]) - radius)
+    assert np.all(distance <= 0.1 * radius)
 
 
 def test_max_steps_is_a_normal_end(circle):
