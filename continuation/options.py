@@ -41,11 +41,11 @@ class Options:
     tol : float
         Newton tolerance. A point is accepted when ``max |H(x)| <= tol`` and
         the next Newton correction satisfies ``max |dx| <= tol (1 + max |x|)``
-        (and, on a curve, its 2-norm is at most a tenth of the step: where
-        ``tol`` is too loose for the curve's scale the run fails instead).
-        Both are absolute in ``H`` and relative to ``1 + max |x|``: scale the
-        problem so that its residual and coordinates near the curve are of
-        order one.
+        (and, on a curve, its 2-norm is at most a tenth of the step size: where
+        ``tol`` is too loose for the curve's scale the run fails instead). The
+        residual test is absolute, the correction test relative to
+        ``1 + max |x|``: scale the problem so that its residual and coordinates
+        near the curve are of order one.
     ds : float
         Initial pseudo-arclength step.
     ds_min, ds_max : float

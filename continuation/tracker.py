@@ -44,6 +44,7 @@ ARC_CLOSE = 1e-3
 #: fraction of the step is not a point of the curve at that step's resolution: the step is
 #: rejected (the tolerances, relative to ``1 + max|x|``, are too loose for the curve's scale)
 UNRESOLVED = 0.1
+_UNRESOLVED_REASON = "the corrected point meets the tolerances"
 
 
 def trace(
@@ -127,13 +128,14 @@ def trace(
     where ``p`` is the order of the predictor error (2 Euler, 3 to 6 extrapolated).
     A step exceeding a limit, or whose corrector fails, is rejected and halved; so is a
     step whose corrected point meets the tolerances while its next Newton correction (the
-    estimate of its distance to the curve) exceeds ``UNRESOLVED = 0.1`` of the step, since
-    the tolerances (``tol`` on the residual, ``tol (1 + max|x|)`` on the corrections) then
-    do not resolve the curve on the step's scale (a curve much smaller than its distance
-    from the origin, or whose residual is below ``tol`` on a whole neighbourhood): the run
-    fails with ``STEP_TOO_SMALL`` and says so, where it would otherwise trace points off
-    the curve. A step that advances no coordinate (below their rounding) ends the run the
-    same way at once.
+    estimate of its distance to the curve) exceeds ``UNRESOLVED = 0.1`` of the step size,
+    since the tolerances (``tol`` on the residual, ``tol (1 + max|x|)`` on the corrections)
+    then do not resolve the curve on the step's scale (a curve much smaller than its
+    distance from the origin, or whose residual is below ``tol`` on a whole neighbourhood):
+    where halving does not help, the run ends with ``STEP_TOO_SMALL`` at ``ds_min`` and the
+    rejection's reason, instead of tracing points off the curve. A step that does not
+    increase the arclength (it moved no coordinate, or less than the rounding of ``s``)
+    ends the run with ``STEP_TOO_SMALL`` at once.
 
     The arclength of a step is its chord corrected by the angle ``alpha``
     between the end tangents, ``|x_b - x_a| (alpha/2) / sin(alpha/2)``; the
@@ -256,20 +258,23 @@ class _Stepper:
             if alpha > options.max_angle:
                 correction.ok = False
                 correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
-            elif correction.remaining > UNRESOLVED * h:
+            elif correction.remaining > UNRESOLVED * self.ds:
+                # against the step size, not h: a last step cut short by max_arclength is
+                # as resolved as the steps before it
                 correction.ok = False
                 correction.reason = (
-                    f"the corrected point is within tol but its Newton correction, "
-                    f"{correction.remaining:.3g}, is more than {UNRESOLVED:g} of the step "
-                    f"{h:.3g}: Options.tol ({options.tol:.3g}, for the corrections relative to "
-                    "1 + max|x|) does not resolve the curve at this scale; lower it or scale "
-                    "the problem")
+                    f"{_UNRESOLVED_REASON} but Newton would still move it "
+                    f"by {correction.remaining:.3g}, more than {UNRESOLVED:g} of the step "
+                    f"{self.ds:.3g}: the tolerances do not resolve the curve on this step's "
+                    f"scale (tol={options.tol:.3g} on the residual, on the corrections relative "
+                    "to 1 + max|x|)")
         if not correction.ok:
             self._reject(h, correction.reason, Status.STEP_TOO_SMALL)
             return
         truncated = h >= options.max_arclength - point.s
         try:
             new, closing = self._accepted_point(correction, alpha, truncated)
+            truncated = truncated or new.s >= options.max_arclength
             if not new.s > point.s:
                 self.status, self.message = _unresolved_step(run, point, self.steps, h)
                 return
@@ -299,7 +304,10 @@ class _Stepper:
         new = run.node(correction.x, point.s + arc_length(correction.x - point.x, alpha),
                        correction.tangent, correction.det, correction.residual,
                        correction.iterations, correction.jacobian)
-        if truncated and new.s != run.options.max_arclength:
+        if (truncated or new.s > run.options.max_arclength) \
+                and new.s != run.options.max_arclength:
+            # (a step's arclength exceeds its pseudo-arclength h by O(h^3): one that was not
+            # cut may still pass max_arclength, and is brought back to it)
             new = _point_at_arclength(run, point, new, run.options.max_arclength)
         closing = None
         if run.options.detect_closed:
@@ -455,10 +463,15 @@ def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
             f"the residual or Jacobian is not finite ahead of the curve {where}: the curve "
             "leaves the residual's domain; stop it before with box_events or an Event, or "
             "extend the residual")
+    if reason.startswith(_UNRESOLVED_REASON):
+        advice = ("The curve is smaller than the tolerances resolve near this point: tighten "
+                  "Options.tol, or shift and scale the problem so that the curve's size and "
+                  "coordinates are of order one")
+    else:
+        advice = ("The curve may end, turn sharply or be singular here: check the residual "
+                  "and Jacobian near this point, loosen Options.tol, or lower Options.ds_min")
     return Status.STEP_TOO_SMALL, (
-        f"{Status.STEP_TOO_SMALL.value} {where}; last rejection: {reason}. The curve may end, "
-        "turn sharply or be singular here: check the residual and Jacobian near this point, "
-        "loosen Options.tol, or lower Options.ds_min")
+        f"{Status.STEP_TOO_SMALL.value} {where}; last rejection: {reason}. {advice}")
 
 
 def _unresolved_step(run: Run, point: Node, steps: int, h: float):
@@ -474,8 +487,8 @@ def _unresolved_step(run: Run, point: Node, steps: int, h: float):
         f"{np.spacing(np.abs(point.x)).max():.3g}), so the curve cannot be followed further "
         "in floating point (the steps get this small where the corrector cannot meet "
         "Options.tol, as where the residual's rounding exceeds it, or when Options.ds is set "
-        "this small): shift and scale the problem so that its coordinates near the curve are of "
-        "order one")
+        "this small): loosen Options.tol to above the residual's rounding, or shift and scale "
+        "the problem so that its coordinates near the curve are of order one")
 
 
 def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:

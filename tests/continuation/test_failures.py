@@ -110,6 +110,19 @@ def test_tolerances_that_do_not_resolve_the_curve_end_the_run_loudly(centre, rad
     assert np.all(distance <= 0.1 * radius)
 
 
+def test_a_short_last_step_or_an_overshoot_ends_at_max_arclength(circle):
+    # a last step cut to a sliver by max_arclength is no unresolved step (its point is as
+    # accurate as the others, even at a loose tol); and a step whose arclength exceeds its
+    # pseudo-arclength h can pass max_arclength: it is brought back, s never decreases
+    for options in (Options(tol=1e-6, max_arclength=0.35002194887826477),
+                    Options(ds=0.2, ds_max=0.2, max_arclength=0.40137)):
+        curve = trace(circle, [1.0, 0.0], options=options)
+        assert curve.status is Status.MAX_ARCLENGTH, curve.message
+        assert curve.s[-1] == options.max_arclength
+        assert np.all(np.diff(curve.s) > 0.0)
+        assert abs(np.hypot(*curve.x[-1]) - 1.0) <= options.tol
+
+
 def test_max_steps_is_a_normal_end(circle):
     curve = trace(circle, [1.0, 0.0], options=Options(max_steps=3))
     assert curve.status is Status.MAX_STEPS and curve.ok
