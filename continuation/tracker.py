@@ -150,6 +150,14 @@ def trace(
     step is known, a bracket beyond it is dropped and one that contains it is cut at it if
     the event has changed sign there (dropped otherwise), so that a multiple zero at the
     same end (e.g. a curve ending where it also touches a box edge) costs no bisections.
+
+    Known limits of branch points (unlike folds and events, whose models are scanned inside
+    the step): only the signs of ``det`` at the step's ends are compared, so two simple
+    branch points inside one step cancel and neither is reported, and a step that lands
+    on the crossing branch near a branch point, within ``max_angle``, is taken without a
+    report. Where branch points may lie closer together than ``ds_max``, or the branches
+    cross at a small angle, lower ``ds_max`` and ``max_angle``. A fold coordinate that is
+    constant along the curve (its tangent component rounding noise) can show spurious folds.
     """
     return follow(problem, x0, direction, options, events, tangent)
 
