@@ -472,9 +472,11 @@ def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
             "leaves the residual's domain; stop it before with box_events or an Event, or "
             "extend the residual")
     if reason.startswith(_UNRESOLVED_REASON):
-        advice = ("The curve is smaller than the tolerances resolve near this point: tighten "
-                  "Options.tol, or shift and scale the problem so that the curve's size and "
-                  "coordinates are of order one")
+        advice = ("Either the curve is smaller than the tolerances resolve near this point "
+                  "(tighten Options.tol, or shift and scale the problem so that the curve's "
+                  "size and coordinates are of order one), or the steps had shrunk for another "
+                  "reason (the earlier rejections, logged at DEBUG level by "
+                  "'continuation.tracker', say which)")
     else:
         advice = ("The curve may end, turn sharply or be singular here: check the residual "
                   "and Jacobian near this point, loosen Options.tol, or lower Options.ds_min")
