@@ -102,12 +102,12 @@ class LinearEvents:
         for row, (j, change, size) in enumerate(zip(self.indices, predicted, sizes, strict=True)):
             f_a, f_b = a.events[j], b.events[j]
             ends = abs(f_a) + abs(f_b)
-            deviation = abs(f_b - f_a - change)
-            if deviation <= AFFINE_TOL * (ends + size):
+            deviation, allowed = abs(f_b - f_a - change), AFFINE_TOL * (ends + size)
+            if deviation <= allowed:
                 continue
             # the rounding term, only where needed (rarely: its terms cancel in g)
             terms = float(self.magnitudes[row] @ (np.abs(a.x) + np.abs(b.x)))
-            if not deviation <= AFFINE_TOL * (ends + size) + ROUNDING * (ends + terms):
+            if not deviation <= allowed + ROUNDING * (ends + terms):
                 raise CallbackError(
                     f"event '{self.events[j].name}' is declared linear but is not affine along "
                     f"the curve: from x={describe(a.x)} to x={describe(b.x)} it changed by "
