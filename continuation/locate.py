@@ -17,10 +17,11 @@ import numpy as np
 
 from .corrector import SINGULAR, Correction, correct, tangent_at
 from .linalg import all_finite, factor_bordered, lu_determinant, max_abs, norm
+from .node import EventNotFinite, LocateError, Node
 from .options import Options
 from .predictor import hermite
 from .problem import Evaluator
-from .scan import JUMP, EventNotFinite, LocateError, Node
+from .scan import JUMP
 
 __all__ = [
     "Located",
@@ -281,7 +282,10 @@ def refine_branch_point(
     the residual left by the arc.
     """
     s_star = located.s
-    distance = 3e-4 * (1.0 + max_abs(cast(Correction, located.correction).x))
+    # within the bracket, which holds this zero alone (a second branch point close by, as
+    # where two meet, would otherwise be inside the nodes and cancel this one's sign change)
+    distance = min(3e-4 * (1.0 + max_abs(cast(Correction, located.correction).x)),
+                   0.5 * (s_star - start.s), 0.5 * (end.s - s_star))
     nodes = []
     for s in (s_star - distance, s_star + distance):
         h = end.s - start.s

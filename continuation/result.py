@@ -102,7 +102,9 @@ class SpecialPoint:
         of the zero along the curve's own arc, not that of ``x``: folds and
         events are exact to it and to the Newton tolerance, a branch point
         (located on a Hermite arc across the singular point) to about
-        ``1e-11`` relative to the scale of ``x``.
+        ``1e-11`` relative to the scale of ``x``, or where two branch points lie
+        closer than about ``sqrt(tol)`` (the branches nearly touch), to about
+        ``tol`` over their distance.
     coordinate : int or None
         The coordinate of a fold, else ``None``.
     tangent : ndarray, shape (n + 1,) or None

@@ -10,10 +10,10 @@ import numpy as np
 from .errors import ContinuationError
 from .events import Event
 from .linear import LinearEvents
+from .node import EventNotFinite, Node, event_value
 from .options import Options
 from .problem import Evaluator, Problem
 from .result import Curve, SpecialPoint, Status
-from .scan import EventNotFinite, Node, event_value
 
 __all__ = ["Run"]
 

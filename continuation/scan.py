@@ -22,7 +22,7 @@ period fits them): such an event needs ``ds_max`` below its own scale.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -40,21 +40,23 @@ from .cubic import (
     samples_disagree,
     split_point,
 )
-from .errors import CallbackError
 from .events import Event, crossed
 from .linalg import max_abs, norm
 from .linear import LinearEvents, event_gradient
+from .node import (
+    EventNotFinite,
+    LocateError,
+    Node,
+    StepUnresolved,
+    curvature,
+    det_slope,
+    event_value,
+)
 from .options import Options
 from .predictor import hermite
 from .problem import Evaluator
 
-__all__ = [
-    "EventNotFinite",
-    "LocateError",
-    "Node",
-    "StepScan",
-    "event_value",
-]
+__all__ = ["StepScan"]
 
 #: a corrected trial point may move at most this fraction of its Hermite interval
 JUMP = 0.1
@@ -79,69 +81,11 @@ _TINY = 1e-300
 #: a tangent component at most this large at a terminal point is a zero there
 TERMINAL_NOISE = 1e-10
 
-#: relative step of the central difference of the Jacobian along the tangent (curvature)
-CURVATURE_STEP = 1e-7
+#: a step's tangent turn may differ from its curvature's by this fraction of max_angle
+TURN_MISMATCH = 0.25
 
 #: the cubic Hermite basis (h00, h01, h10, h11) at SAMPLES, the rows of u = 1/3 and 2/3
 _SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0
-
-
-class LocateError(RuntimeError):
-    """A special point was bracketed but could not be located (or a scan not resolved)."""
-
-
-class EventNotFinite(LocateError):
-    """An event function (or its derivative along the curve) is not finite at a point."""
-
-
-class Node:
-    """A point of the curve with its tangent and the values the scan needs.
-
-    Attributes
-    ----------
-    x, tangent : ndarray, shape (n + 1,)
-    s : float
-        Arclength parameter of the point (for nodes inside a step, that of the
-        step's cubic Hermite arc).
-    det : float
-        ``det [H'(x); t^T]``.
-    residual : float
-        ``max |H(x)|``.
-    iterations : int
-        Newton steps that produced the point.
-    events : list of float
-        Event values ``g_j(x)``.
-    slopes : list of float or None
-        ``d g_j / ds`` along the curve, filled when first needed.
-    turning : ndarray or None
-        The curvature ``dt/ds``, filled when first needed (:meth:`StepScan.turning`).
-    jacobian : ndarray or None
-        ``H'(x)``, if the corrector evaluated it there (it saves one in the curvature).
-    """
-
-    __slots__ = ("det", "events", "iterations", "jacobian", "residual", "s", "slopes",
-                 "tangent", "turning", "x")
-
-    def __init__(self, x, s, tangent, det, residual, iterations, events, jacobian=None):
-        self.x = x
-        self.s = s
-        self.tangent = tangent
-        self.det = det
-        self.residual = residual
-        self.iterations = iterations
-        self.events = events
-        self.slopes = None
-        self.turning = None
-        self.jacobian = jacobian
-
-
-def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], str]) -> float:
-    """``event.function(x)`` as a float; a raised exception becomes a :class:`CallbackError`."""
-    try:
-        return float(event.function(x))
-    except Exception as exc:
-        raise CallbackError(f"event '{event.name}' raised {type(exc).__name__}: {exc} at "
-                            f"x={describe(x)}") from exc
 
 
 def _event_slope(event: Event, node: Node, describe) -> float:
@@ -392,29 +336,102 @@ class StepScan:
             self.nodes.sort(key=lambda n: n.s)
 
     def turning(self, node: Node) -> np.ndarray:
-        """:meth:`curvature` at a node, computed once."""
+        """The curvature ``dt/ds`` at a node (:func:`curvature`), computed once."""
         if node.turning is None:
-            node.turning = self.curvature(node)
+            kappa = curvature(self.evaluator, node)
+            if kappa is None:
+                raise LocateError(f"no curvature at the singular point "
+                                  f"x={self.describe(node.x)}")
+            node.turning = kappa
         return node.turning
 
-    def curvature(self, node: Node) -> np.ndarray:
-        """The curvature vector ``dt/ds`` at a node.
+    def det_slope(self, node: Node) -> float:
+        """``d det [H'; t^T] / ds`` at a node (:func:`det_slope`), computed once."""
+        if node.det_slope is None:
+            slope = det_slope(self.evaluator, node)
+            if not math.isfinite(slope):
+                raise LocateError(f"the slope of det [H'; t^T] is {slope!r} at "
+                                  f"x={self.describe(node.x)}")
+            node.det_slope = slope
+        return node.det_slope
 
-        ``[H'; t^T] kappa = [-H''[t, t]; 0]``, from differentiating ``H'(x(s)) t(s) = 0``;
-        ``H''[t, t]`` is the forward difference ``(H'(x + e t) - H'(x)) t / e`` (relative
-        error about ``1e-7``, ample for the models and signs it serves), with the corrector's
-        ``H'(x)`` where the node has it: one Jacobian, else two.
+    def check_turn(self) -> None:
+        """:class:`LocateError` if the step's cubic Hermite arc bends otherwise than the curve.
+
+        The arc through ``x_a, t_a, x_b, t_b`` (width ``h``, chord ``c = (x_b - x_a) / h``)
+        has second derivatives ``(6 c - 4 t_a - 2 t_b) / h`` and ``(-6 c + 2 t_a + 4 t_b) / h``
+        at its ends; on a smooth curve they equal its curvature ``kappa = dt/ds`` there up to
+        ``O(h^2)``. An end where ``h`` times their difference (an angle) exceeds
+        ``TURN_MISMATCH * max_angle`` means the step did not follow one smooth curve: it landed
+        on another branch (near a branch point, where two branches meet, the corrector converges
+        as readily to either) or the curve bends faster than the step resolves, and the arc that
+        locates the step's special points misrepresents it. Either way the step is too long.
+        Not at a singular start (``det = 0``, no curvature there).
         """
-        x, t = node.x, node.tangent
-        jacobian = node.jacobian if node.jacobian is not None else self.evaluator.jacobian(x)
-        step = CURVATURE_STEP * (1.0 + max_abs(x))
-        second = (self.evaluator.jacobian(x + step * t) - jacobian) @ t / step
-        bordered = np.vstack([jacobian, t])
-        try:
-            return np.linalg.solve(bordered, np.append(-second, 0.0))
-        except np.linalg.LinAlgError:
-            raise LocateError(f"no curvature at the singular point "
-                              f"x={self.describe(x)}") from None
+        a, b = self.nodes[0], self.nodes[-1]
+        if a.det == 0.0 or b.det == 0.0:
+            return
+        width = b.s - a.s
+        # h p''(0) = 6 c - 4 t_a - 2 t_b = u + v, h p''(1) = v - u, with u = 6 c - 3 (t_a + t_b)
+        u = (6.0 / width) * (b.x - a.x) - 3.0 * (a.tangent + b.tangent)
+        v = b.tangent - a.tangent
+        start = norm(u + v - width * self.turning(a))
+        end = norm(v - u - width * self.turning(b))
+        limit = TURN_MISMATCH * self.options.max_angle
+        if max(start, end) > limit:
+            raise StepUnresolved(f"the step's arc bends {max(start, end):.3g} rad (more than "
+                              f"{limit:.3g}) off the curvature at its ends: the step is too long "
+                              "for the curve's bending, or it jumped to another branch")
+
+    def branch_brackets(self, end: Node | None = None) -> list[tuple[Node, Node, float, float]]:
+        """Brackets ``(lo, hi, det_lo, det_hi)`` of the sign changes of ``det [H'; t^T]``.
+
+        The model of the determinant on an interval is the cubic Hermite interpolant of its
+        values and exact slopes (:meth:`det_slope`), scanned like a fold's (:meth:`_brackets`),
+        so two simple branch points inside one step (the determinant dips through zero and
+        back) are both bracketed where their end signs agree. An interval with an end where the
+        determinant is exactly zero (a singular start) has the linear model: a branch point
+        there is the start, not a crossing. ``end``: where the curve ends (a terminal event);
+        only sign changes before it are bracketed. For a step that is not :meth:`det_clear`.
+        """
+        if end is not None:
+            self.add(end)
+
+        def model(lo: Node, hi: Node):
+            d_lo, d_hi = lo.det, hi.det
+            if d_lo == 0.0 or d_hi == 0.0:
+                return (d_lo, d_hi - d_lo, 0.0, 0.0)
+            width = hi.s - lo.s
+            return cubic(d_lo, width * self.det_slope(lo), d_hi, width * self.det_slope(hi))
+
+        nodes = self.nodes if end is None else [n for n in self.nodes if n.s <= end.s]
+        return self._brackets(lambda node: node.det, model, 0, nodes)
+
+    def det_clear(self, previous: Node | None = None) -> bool:
+        """Whether the determinant's model on the whole step neither crosses nor nears zero:
+        the bound of :meth:`_clear` with the determinant's values and slopes.
+
+        The slopes are those of the quadratic through the determinant at ``previous`` (the
+        curve point before the step) and the step's ends, which costs nothing; where there is
+        no such point (the first step, or one at a singular start), the exact slopes
+        (:meth:`det_slope`, a Jacobian each). A step that is not clear is scanned with the
+        exact slopes (:meth:`branch_brackets`) and checked by :meth:`check_turn`.
+        """
+        a, b = self.nodes[0], self.nodes[-1]
+        d_a, d_b = a.det, b.det
+        if not ((d_a > 0.0 and d_b > 0.0) or (d_a < 0.0 and d_b < 0.0)):
+            return False
+        width = b.s - a.s
+        if previous is not None and previous.det != 0.0 and previous.s < a.s:
+            # divided differences: q'(s_a) = f[p,a] + f[p,a,b] h_1, q'(s_b) = ... (h_1 + 2 h_2)
+            h_1 = a.s - previous.s
+            first = (d_a - previous.det) / h_1
+            second = ((d_b - d_a) / width - first) / (h_1 + width)
+            m_a, m_b = first + second * h_1, first + second * (h_1 + 2.0 * width)
+        else:
+            m_a, m_b = self.det_slope(a), self.det_slope(b)
+        return (4.0 / 27.0) * width * (abs(m_a) + abs(m_b)) \
+            <= (1.0 - CLEAR) * min(abs(d_a), abs(d_b))
 
     def fold_brackets(self, i: int, noise: float = 0.0,
                       end: Node | None = None) -> list[tuple[Node, Node, float, float]]:

@@ -15,12 +15,13 @@ from typing import NamedTuple, cast
 import numpy as np
 
 from .corrector import Correction
-from .events import Event, crossed
+from .events import Event
 from .locate import Located, locate_zero, refine_branch_point
+from .node import LocateError, Node, event_value
 from .predictor import arc_length
 from .result import SpecialKind, SpecialPoint
 from .run import Run
-from .scan import LocateError, Node, StepScan, event_value
+from .scan import StepScan
 
 __all__ = ["Found", "add_step", "append_end", "fold_inconsistency", "scan_step"]
 
@@ -37,20 +38,31 @@ class Found(NamedTuple):
     event: int | None = None
 
 
-def scan_step(run: Run, a: Node, b: Node) -> list[Found]:
+def scan_step(run: Run, a: Node, b: Node, previous: Node | None = None) -> list[Found]:
     """Bracket and locate the special points of step ``(a, b]``, in order along it.
+
+    ``previous``: the curve point before ``a``, if any (it makes the branch-point screen of a
+    step cost no Jacobian: :meth:`StepScan.det_clear`).
 
     Raises
     ------
     LocateError
         If a special point was bracketed but could not be located (the step may
         be too long for the Hermite arc to predict its inside); an
-        :class:`EventNotFinite` if an event is not finite inside the step.
+        :class:`EventNotFinite` if an event is not finite inside the step; a
+        :class:`StepUnresolved` if the step does not follow one smooth curve (with
+        ``detect_branch_points``, on a step whose determinant nears zero:
+        :meth:`StepScan.check_turn`).
     """
     options, evaluator = run.options, run.evaluator
     describe = run.problem.describe
     scan = StepScan(evaluator, options, run.events, a, b, run.linear)
     scan.check_linear_events()
+    branches = options.detect_branch_points and not scan.det_clear(previous)
+    if branches:
+        # before locating anything: a step that jumped to another branch is rejected (a jump
+        # near a branch point is never clear: the determinant nears zero on both branches)
+        scan.check_turn()
     found: list[Found] = []
     what = "a special point"
     try:
@@ -86,15 +98,17 @@ def scan_step(run: Run, a: Node, b: Node) -> list[Found]:
                 located = locate_zero(evaluator, options, lambda c, i=i: c.tangent[i],
                                       lo, hi, f_lo, f_hi, True)
                 found.append(Found(located, SpecialKind.FOLD, name, i, False))
-        if options.detect_branch_points and crossed(a.det, b.det):
+        if branches:
             what = "a branch point"
-            # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
-            # the accepted ends, and smooth through the branch point where t is not
-            located = locate_zero(evaluator, options, lambda c: c.border_det, a, b, a.det,
-                                  b.det, True)
-            if located.node is None:
-                located = refine_branch_point(evaluator, options, located, a, b)
-            found.append(Found(located, SpecialKind.BRANCH_POINT, "branch point", None, False))
+            for lo, hi, f_lo, f_hi in scan.branch_brackets(end):
+                # det [H'; b^T] with the interpolated tangent b: equal to det [H'; t^T] at
+                # the bracket's ends, and smooth through the branch point where t is not
+                located = locate_zero(evaluator, options, lambda c: c.border_det, lo, hi, f_lo,
+                                      f_hi, True)
+                if located.node is None:
+                    located = refine_branch_point(evaluator, options, located, lo, hi)
+                found.append(Found(located, SpecialKind.BRANCH_POINT, "branch point", None,
+                                   False))
     except LocateError as error:
         raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
                           f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None

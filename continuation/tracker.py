@@ -16,12 +16,12 @@ import numpy as np
 from .corrector import NON_FINITE, SINGULAR, Correction, correct
 from .errors import CallbackError, CallbackShapeError
 from .events import Event
+from .node import EventNotFinite, LocateError, Node, StepUnresolved
 from .options import Options
 from .predictor import arc_length, extrapolate, hermite
 from .problem import Evaluator, Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .run import Run
-from .scan import EventNotFinite, LocateError, Node
 from .special import add_step, fold_inconsistency, scan_step
 
 __all__ = ["follow", "trace"]
@@ -151,13 +151,19 @@ def trace(
     the event has changed sign there (dropped otherwise), so that a multiple zero at the
     same end (e.g. a curve ending where it also touches a box edge) costs no bisections.
 
-    Known limits of branch points (unlike folds and events, whose models are scanned inside
-    the step): only the signs of ``det`` at the step's ends are compared, so two simple
-    branch points inside one step cancel and neither is reported, and a step that lands
-    on the crossing branch near a branch point, within ``max_angle``, is taken without a
-    report. Where branch points may lie closer together than ``ds_max``, or the branches
-    cross at a small angle, lower ``ds_max`` and ``max_angle``. A fold coordinate that is
-    constant along the curve (its tangent component rounding noise) can show spurious folds.
+    Branch points are scanned inside each step like folds: a step whose determinant is not
+    clear of zero (judged from its values at the step's ends and the point before, at no
+    cost) is modelled with the determinant's exact slopes, so two branch points inside one
+    step are both found, and a step whose arc bends otherwise than the curvature at its ends
+    (it landed on the crossing branch near a branch point, or outran a sharp turn) is
+    rejected and retaken shorter (:meth:`continuation.scan.StepScan.check_turn`).
+
+    Known limits: two branch points closer together than a step, on branches that cross at a
+    small angle (they nearly touch between the two), can be passed by a step that lands on
+    the other branch between them, and only one or neither is reported; lower ``ds_max``
+    where branches nearly touch. Two branch points closer than about ``sqrt(tol)`` are
+    located only to about ``tol`` over their distance. A fold coordinate that is constant
+    along the curve (its tangent component rounding noise) can show spurious folds.
     """
     return follow(problem, x0, direction, options, events, tangent)
 
@@ -286,11 +292,15 @@ class _Stepper:
             if not new.s > point.s:
                 self.status, self.message = _unresolved_step(run, point, self.steps, h)
                 return
-            found = scan_step(run, point, new)
+            found = scan_step(run, point, new, self.nodes[-1] if self.nodes else None)
         except EventNotFinite as error:
             self.status, self.message = Status.EVENT_NOT_FINITE, (
                 f"{error}; the event's zeros cannot be found beyond s={point.s:.12g}: make the "
                 "event finite along the curve or stop the curve before")
+            return
+        except StepUnresolved as error:
+            # a step that jumped to another branch, or bends faster than it resolves
+            self._reject(h, str(error), Status.STEP_TOO_SMALL)
             return
         except LocateError as error:
             # a step whose special points cannot be located is too long for its Hermite

@@ -177,3 +177,95 @@ def test_no_fold_reported_at_the_start_of_a_switched_branch():
         for direction in ([0.0, 1.0], [0.0, -1.0]):
             curve = switch_branch(shifted, start, direction=direction, options=options)
             assert curve.ok and not curve.special("fold"), (start, direction)
+
+
+def _branch_pair(gap: float) -> Problem:
+    # x = (lambda, u): u ((lambda - 1)(lambda - 1 - gap) - u^2); on u = 0 the determinant
+    # det [H'; t^T] = (lambda - 1)(lambda - 1 - gap) (times the orientation) dips below zero
+    # between two branch points, at lambda = 1 and 1 + gap
+    return Problem(
+        lambda x: np.array([x[1] * ((x[0] - 1.0) * (x[0] - 1.0 - gap) - x[1] ** 2)]),
+        lambda x: np.array([[x[1] * (2.0 * x[0] - 2.0 - gap),
+                             (x[0] - 1.0) * (x[0] - 1.0 - gap) - 3.0 * x[1] ** 2]]))
+
+
+@pytest.mark.parametrize("gap", [0.005, 0.01, 0.05, 0.1, 0.15])
+def test_two_branch_points_inside_one_step_are_both_found(gap):
+    # the determinant has the same sign at both ends of the step that holds both (a sign
+    # test of the ends alone misses them); its model from the exact slopes dips through zero
+    curve = trace(_branch_pair(gap), [0.0, 0.0], direction=[1.0, 0.0],
+                  options=Options(max_arclength=3.0))
+    assert curve.ok
+    points = curve.special("branch_point")
+    assert [round(float(p.x[0]), 9) for p in points] == [1.0, round(1.0 + gap, 9)]
+    for point in points:
+        assert abs(point.x[1]) <= 1e-12
+
+
+def test_branch_points_where_a_line_cuts_a_circle_near_its_tangent():
+    # a line that nearly touches a circle cuts it at two close points: both are branch
+    # points of (line)(circle) = 0 traced along the line (before, 50 of 100 such lines
+    # showed neither)
+    rng = np.random.default_rng(7)
+    for _ in range(100):
+        angle = rng.uniform(0.0, np.pi)
+        v = np.array([np.cos(angle), np.sin(angle)])
+        n = np.array([-v[1], v[0]])
+        centre, radius = rng.uniform(-1.0, 1.0, 2), 10.0 ** rng.uniform(-2.0, 0.0)
+        distance = radius * rng.uniform(0.0, 1.0) ** 0.2
+        foot = centre + distance * n
+
+        def residual(x, n=n, foot=foot, centre=centre, radius=radius):
+            return np.array([(n @ (x - foot)) * ((x - centre) @ (x - centre) - radius ** 2)])
+
+        def jacobian(x, n=n, foot=foot, centre=centre, radius=radius):
+            line, circle = n @ (x - foot), (x - centre) @ (x - centre) - radius ** 2
+            return np.array([n * circle + 2.0 * line * (x - centre)])
+
+        half = np.sqrt(radius ** 2 - distance ** 2)
+        curve = trace(Problem(residual, jacobian), foot - (half + 1.0) * v, direction=v,
+                      options=Options(max_arclength=2.0 * half + 2.0))
+        points = curve.special("branch_point")
+        assert curve.ok and len(points) == 2, (2.0 * half, curve.message)
+        for point, expected in zip(points, (foot - half * v, foot + half * v), strict=True):
+            assert np.max(np.abs(point.x - expected)) <= 1e-8
+
+
+def test_det_slope_is_the_derivative_of_the_determinant_along_the_curve():
+    from continuation.options import Options as _Options
+    from continuation.problem import Evaluator
+    from continuation.node import Node
+    from continuation.scan import StepScan
+
+    gap = 0.1
+    evaluator = Evaluator(_branch_pair(gap))
+    nodes = []
+    for lam in (0.5, 1.05, 1.7):
+        x, t = np.array([lam, 0.0]), np.array([1.0, 0.0])
+        bordered = np.vstack([evaluator.jacobian(x), t])
+        nodes.append(Node(x, lam, t, float(np.linalg.det(bordered)), 0.0, 0, []))
+    scan = StepScan(evaluator, _Options(), [], nodes[0], nodes[-1])
+    for node in nodes:
+        lam = node.x[0]
+        # det [[0, (l - 1)(l - 1 - g)], [1, 0]] = -(l - 1)(l - 1 - g)
+        assert node.det == pytest.approx(-(lam - 1.0) * (lam - 1.0 - gap), abs=1e-15)
+        assert scan.det_slope(node) == pytest.approx(-(2.0 * lam - 2.0 - gap), abs=1e-6)
+
+
+@pytest.mark.parametrize("mu", [0.01, 0.011018063301098219, 0.012139771890700746,
+                                0.016237767391887217, 0.05])
+def test_a_step_onto_the_crossing_branch_is_rejected(mu):
+    # x = (lambda, u): u (mu lambda - u^2); the parabola lambda = u^2 / mu turns sharply at
+    # the branch point (0, 0), where the line u = 0 crosses it. With ds_max = 0.5 a step
+    # from the parabola used to land on the line (its tangent turned within max_angle) and
+    # the run went on there, ok; the arc of such a step bends unlike the curvature at its
+    # ends, so it is rejected and the parabola is followed through the branch point.
+    problem = Problem(lambda x: np.array([x[1] * (mu * x[0] - x[1] ** 2)]),
+                      lambda x: np.array([[mu * x[1], mu * x[0] - 3.0 * x[1] ** 2]]))
+    curve = trace(problem, [0.36 / mu, -0.6], direction=[0.0, 1.0],
+                  options=Options(ds_max=0.5, max_arclength=3.0 + 0.36 / mu))
+    assert curve.ok
+    assert np.all(np.abs(mu * curve.x[:, 0] - curve.x[:, 1] ** 2) <= 1e-8 * (1 + curve.x[:, 0]))
+    assert curve.x[-1, 1] > 0.1  # through the branch point, on the parabola
+    (point,) = curve.special("branch_point")
+    assert np.max(np.abs(point.x)) <= 1e-8
