@@ -4,7 +4,8 @@
 components and of the branch-point determinant inside the step (:mod:`continuation.scan`) and
 locates each (:mod:`continuation.locate`), terminal events first; :func:`add_step` appends
 the step's points and its special points to the run in their order along the curve;
-:func:`fold_inconsistency` checks that the points never turn where no fold was reported.
+:func:`fold_inconsistency` checks that the points never turn where no fold was reported, and
+:func:`drop_unresolved_folds` removes folds in a coordinate the points do not resolve.
 """
 
 from __future__ import annotations
@@ -23,7 +24,8 @@ from .result import SpecialKind, SpecialPoint
 from .run import Run
 from .scan import StepScan
 
-__all__ = ["Found", "add_step", "append_end", "fold_inconsistency", "scan_step"]
+__all__ = ["Found", "add_step", "append_end", "drop_unresolved_folds", "fold_inconsistency",
+           "scan_step"]
 
 #: components of a singular start's tangent at most this large are taken as zero
 BRANCH_TANGENT_NOISE = 1e-7
@@ -215,6 +217,49 @@ def fold_inconsistency(run: Run) -> str:
             return (f"the points turn {turns} times in {run.problem.coordinate_name(i)} but "
                     f"{folds} folds were located: a fold was missed; lower Options.ds_max")
     return ""
+
+
+def drop_unresolved_folds(run: Run) -> None:
+    """Remove the folds in a coordinate that the points do not resolve (a constant coordinate).
+
+    Where ``x_i`` is constant along a curve (a trivial branch ``u = c``), its tangent component
+    is rounding noise and changes sign at random: each change is located as a fold. Between two
+    consecutive folds of ``x_i`` the coordinate is monotone, so each fold has a *persistence*,
+    how far ``x_i`` moves to its neighbours (the folds beside it, or the curve's ends). As in
+    the simplification of a function's extrema by persistence, the adjacent pair of folds
+    closest in ``x_i`` is removed while it is closer than the points' noise,
+    ``100 tol (1 + max|x|)`` (the corrector accepts points to ``tol (1 + max|x|)``), and then a
+    fold left with both ends of the curve within that noise. A fold next to one end only
+    (entering the curve there) is kept: elsewhere ``x_i`` moves on.
+    """
+    x = run.x
+    if not x:
+        return
+    for i in run.options.fold_coordinates:
+        folds = sorted((p for p in run.special
+                        if p.kind is SpecialKind.FOLD and p.coordinate == i),
+                       key=lambda p: (p.index, p.s))
+        if not folds:
+            continue
+        values = [float(p.x[i]) for p in folds]
+        noises = [100.0 * run.options.tol * (1.0 + float(np.max(np.abs(p.x)))) for p in folds]
+        live = list(range(len(folds)))
+        while True:
+            pairs = [(abs(values[a] - values[b]), a, b)
+                     for a, b in zip(live, live[1:], strict=False)
+                     if abs(values[a] - values[b]) <= max(noises[a], noises[b])]
+            if not pairs:
+                break
+            _, a, b = min(pairs)
+            live = [k for k in live if k not in (a, b)]
+        first, last = float(x[0][i]), float(x[-1][i])
+        if len(live) == 1:
+            k = live[0]
+            if max(abs(values[k] - first), abs(values[k] - last)) <= noises[k]:
+                live = []
+        removed = {id(folds[k]) for k in range(len(folds)) if k not in live}
+        if removed:
+            run.special = [p for p in run.special if id(p) not in removed]
 
 
 def _sign_changes(values: list[float]) -> int:

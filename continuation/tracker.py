@@ -22,7 +22,7 @@ from .predictor import arc_length, extrapolate, hermite
 from .problem import Evaluator, Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .run import Run
-from .special import add_step, fold_inconsistency, scan_step
+from .special import add_step, drop_unresolved_folds, fold_inconsistency, scan_step
 
 __all__ = ["follow", "trace"]
 
@@ -162,8 +162,11 @@ def trace(
     small angle (they nearly touch between the two), can be passed by a step that lands on
     the other branch between them, and only one or neither is reported; lower ``ds_max``
     where branches nearly touch. Two branch points closer than about ``sqrt(tol)`` are
-    located only to about ``tol`` over their distance. A fold coordinate that is constant
-    along the curve (its tangent component rounding noise) can show spurious folds.
+    located only to about ``tol`` over their distance.
+
+    Folds in a coordinate the points do not resolve (constant along the curve, its tangent
+    component rounding noise) are dropped at the end of the run, pairs closer in ``x_i`` than
+    ``100 tol (1 + max|x|)`` first (:func:`continuation.special.drop_unresolved_folds`).
     """
     return follow(problem, x0, direction, options, events, tangent)
 
@@ -244,12 +247,13 @@ class _Stepper:
         self.message = ""
 
     def check_terminated(self) -> bool:
-        """Whether the run has ended; the last check, of the folds, once it has."""
+        """Whether the run has ended; the last checks, of the folds, once it has."""
         if self.status is None and self.steps >= self.run.options.max_steps:
             self.status = Status.MAX_STEPS
             self.message = f"{Status.MAX_STEPS.value} ({self.steps})"
         if self.status is None:
             return False
+        drop_unresolved_folds(self.run)
         if not self.status.failed:
             inconsistency = fold_inconsistency(self.run)
             if inconsistency:

@@ -291,3 +291,39 @@ def test_a_loop_switched_onto_at_a_branch_point_closes_after_one_lap(direction):
     assert loop.status is Status.CLOSED
     assert loop.s[-1] == pytest.approx(2.0 * np.pi * np.sqrt(1.25), rel=1e-6)
     assert len(loop.special("fold")) == 2
+
+
+@pytest.mark.parametrize("c0", [0.7, 1e-3, 123.4])
+@pytest.mark.parametrize("lam0", [-1.0, -2.3])
+def test_no_folds_in_a_coordinate_that_is_constant_along_the_curve(c0, lam0):
+    # the trivial branch u = c0 of (u - c0)(lambda - (u - c0)^2): u moves only by the
+    # corrector's 1e-10, its tangent component is noise whose sign changes were 6 to 10 folds
+    problem = Problem(
+        lambda x: np.array([(x[1] - c0) * (x[0] - (x[1] - c0) ** 2)]),
+        lambda x: np.array([[x[1] - c0, x[0] - 3.0 * (x[1] - c0) ** 2]]))
+    curve = trace(problem, [lam0, c0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0, 1), max_arclength=3.0))
+    assert curve.ok
+    assert curve.special("fold") == ()
+    assert len(curve.special("branch_point")) == 1
+
+
+def test_a_close_pair_of_folds_and_a_fold_next_to_the_start_are_kept():
+    # u^3 - e u = lambda: folds at u = -+sqrt(e/3), 8e-7 apart in lambda for e = 1e-4 (far
+    # above the points' noise); and a curve that starts 1e-7 before a fold, whose lambda there
+    # is within 1e-14 of the start's: the fold is kept (lambda moves on beyond it)
+    e = 1e-4
+    problem = Problem(lambda x: np.array([x[1] ** 3 - e * x[1] - x[0]]),
+                      lambda x: np.array([[-1.0, 3.0 * x[1] ** 2 - e]]))
+    curve = trace(problem, [-1.0, -1.0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0,), max_arclength=4.0))
+    folds = curve.special("fold")
+    assert curve.ok and len(folds) == 2
+    root = math.sqrt(e / 3.0)
+    for fold, u in zip(folds, (-root, root), strict=True):
+        assert abs(fold.x[1] - u) <= 1e-9
+    start = -root - 1e-7
+    curve = trace(problem, [start ** 3 - e * start, start], direction=[0.0, 1.0],
+                  options=Options(fold_coordinates=(0,), max_arclength=0.1))
+    assert curve.ok
+    assert [round(float(p.x[1] / root), 8) for p in curve.special("fold")] == [-1.0, 1.0]
