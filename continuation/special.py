@@ -15,10 +15,11 @@ from typing import NamedTuple, cast
 
 import numpy as np
 
-from .corrector import Correction
+from .bifurcation import branch_tangent_pair
+from .corrector import Correction, correct
 from .events import Event
 from .locate import Located, locate_zero, refine_branch_point
-from .node import LocateError, Node, event_value
+from .node import LocateError, Node, StepUnresolved, event_value
 from .predictor import arc_length
 from .result import SpecialKind, SpecialPoint
 from .run import Run
@@ -111,6 +112,8 @@ def scan_step(run: Run, a: Node, b: Node, previous: Node | None = None) -> list[
                     located = refine_branch_point(evaluator, options, located, lo, hi)
                 found.append(Found(located, SpecialKind.BRANCH_POINT, "branch point", None,
                                    False))
+            if found and found[-1].kind is SpecialKind.BRANCH_POINT and end is None:
+                _check_branch_kept(run, scan, a, b, found[-1].located)
     except LocateError as error:
         raise type(error)(f"{what} in the step from s={a.s:.12g} to s={b.s:.12g}, "
                           f"x={describe(a.x)} to x={describe(b.x)}: {error}") from None
@@ -121,6 +124,51 @@ def scan_step(run: Run, a: Node, b: Node, previous: Node | None = None) -> list[
     chord = b.x - a.x
     found.sort(key=lambda item: float((_located_x(item.located) - a.x) @ chord))
     return found
+
+
+def _check_branch_kept(run: Run, scan: StepScan, a: Node, b: Node, located: Located) -> None:
+    """:class:`StepUnresolved` unless the step's end ``b`` lies on the branch that ``a`` came
+    along, past the branch point ``located``; at a ``b`` on the branch point, its tangent
+    becomes that branch's.
+
+    Where two branches cross at a small angle ``theta`` the corrector converges to either
+    beyond the branch point, and neither the determinant nor the tangents show a jump. The
+    incoming branch's tangent ``t_in`` at the branch point is the root of the bifurcation
+    equation nearest ``t_a`` carried there with its curvature (the other is ``theta`` away;
+    the step is too long when the two are not clearly told apart); the incoming branch is then
+    corrected, from ``x* + d t_in + (d^2/2) kappa_a``, onto the hyperplane through ``b`` normal
+    to its tangent, and must meet it at ``b`` (the other branch is about ``theta d`` away).
+    Where ``theta d`` is below the points' noise, ``b`` is on the branch point itself.
+    """
+    c = located.node if located.node is not None else cast(Correction, located.correction)
+    x_star, s_star = c.x, located.s
+    try:
+        pair = branch_tangent_pair(run.evaluator, x_star)
+    except (ValueError, np.linalg.LinAlgError):
+        return  # not a simple branch point to rounding: no pair of branches to tell apart
+    kappa = scan.turning(a)
+    guess = a.tangent + (s_star - a.s) * kappa
+    guess = guess / float(np.linalg.norm(guess))
+    tangents = [t if float(t @ guess) > 0.0 else -t for t in pair]
+    angles = [math.acos(max(-1.0, min(1.0, float(t @ guess)))) for t in tangents]
+    theta = math.acos(min(1.0, abs(float(pair[0] @ pair[1]))))
+    incoming = tangents[0] if angles[0] <= angles[1] else tangents[1]
+    where = (f"the step from s={a.s:.12g} to s={b.s:.12g} passed the branch point at "
+             f"x={run.problem.describe(x_star)}, where branches cross at {theta:.3g} rad")
+    if min(angles) > 0.25 * theta or max(angles) < 0.75 * theta:
+        raise StepUnresolved(f"{where}: too long to tell which branch it came along")
+    d = b.s - s_star
+    if 0.25 * theta * d <= 100.0 * run.options.tol * (1.0 + float(np.max(np.abs(b.x)))):
+        # b is on the branch point, to the points' noise: the tangent computed there is noise
+        b.tangent = incoming
+        return
+    along = kappa - float(kappa @ incoming) * incoming
+    p = x_star + d * incoming + 0.5 * d * d * along
+    check = correct(run.evaluator, p, b.tangent, run.options.newton, target=float(b.tangent @ b.x),
+                    max_correction=theta * d, need_tangent=False)
+    if not check.ok or float(np.linalg.norm(check.x - b.x)) > 0.25 * theta * d:
+        raise StepUnresolved(f"{where}: its end is not on the branch it came along (it may have "
+                             "jumped to the other)")
 
 
 def _located_x(located: Located) -> np.ndarray:

@@ -156,7 +156,9 @@ def trace(
     cost) is modelled with the determinant's exact slopes, so two branch points inside one
     step are both found, and a step whose arc bends otherwise than the curvature at its ends
     (it landed on the crossing branch near a branch point, or outran a sharp turn) is
-    rejected and retaken shorter (:meth:`continuation.scan.StepScan.check_turn`).
+    rejected and retaken shorter (:meth:`continuation.scan.StepScan.check_turn`); so is a step
+    past a branch point whose end is not on the branch it came along (corrected from the
+    branch point along that branch's tangent, from the bifurcation equation).
 
     Known limits: two branch points closer together than a step, on branches that cross at a
     small angle (they nearly touch between the two), can be passed by a step that lands on

@@ -269,3 +269,42 @@ def test_a_step_onto_the_crossing_branch_is_rejected(mu):
     assert curve.x[-1, 1] > 0.1  # through the branch point, on the parabola
     (point,) = curve.special("branch_point")
     assert np.max(np.abs(point.x)) <= 1e-8
+
+
+@pytest.mark.parametrize(("a1", "b1", "a2", "b2", "l0", "ds_max"), [
+    (-50.55975390074684, 1.5906402313231438, -0.07236779875416668, 1.566259026500276,
+     -0.2093150645983881, 1.110594396468765),
+    (-2.0002867931385544, -2.3049553211002665, 0.3128284692240248, -2.28940325741729,
+     -0.437239338164912, 0.457086854102373),
+    (1.7169785705739622, 0.6115973107692956, -0.011037457861826435, 0.6439123452098285,
+     -0.24819848724955357, 0.18217300174131434),
+    (-1.0247300437535372, -1.024671597860571, -3.4672344662764676, -1.0754124145111699,
+     -0.6419323514293872, 1.4360810315562955),
+])
+def test_a_step_past_a_branch_point_stays_on_its_branch(a1, b1, a2, b2, l0, ds_max):
+    # the parabolas u = a_i l^2 + b_i l cross at l = 0 and l = (b2 - b1)/(a1 - a2) at small
+    # angles (0.02-0.05 rad); traced along the first, a step past a crossing used to land on
+    # the second and go on there, ok. Now a step past a branch point must meet its own branch
+    # again, corrected from the branch point along the incoming branch's tangent (from the
+    # bifurcation equation), else it is retaken shorter.
+    def first(lam):
+        return a1 * lam * lam + b1 * lam
+
+    def second(lam):
+        return a2 * lam * lam + b2 * lam
+
+    problem = Problem(
+        lambda x: np.array([(x[1] - first(x[0])) * (x[1] - second(x[0]))]),
+        lambda x: np.array([[-(2 * a1 * x[0] + b1) * (x[1] - second(x[0]))
+                             - (2 * a2 * x[0] + b2) * (x[1] - first(x[0])),
+                             (x[1] - second(x[0])) + (x[1] - first(x[0]))]]))
+    curve = trace(problem, [l0, first(l0)], direction=[1.0, 2 * a1 * l0 + b1],
+                  options=Options(ds=min(0.05, ds_max), ds_max=ds_max, max_arclength=4.0))
+    assert curve.ok, curve.message
+    lam = curve.x[:, 0]
+    assert np.max(np.abs(curve.x[:, 1] - first(lam)) / (1.0 + np.abs(curve.x[:, 1]))) <= 1e-4
+    crossings = [c for c in (0.0, (b2 - b1) / (a1 - a2)) if lam.min() < c < lam.max()]
+    points = curve.special("branch_point")
+    assert len(points) == len(crossings)
+    for point, crossing in zip(points, sorted(crossings), strict=True):
+        assert abs(point.x[0] - crossing) <= 1e-6

@@ -1,0 +1,60 @@
+"""The algebraic bifurcation equation at a simple branch point: the tangents of its branches.
+
+Used by :mod:`continuation.branching` (switching branches) and by the step scan, which checks
+that a step past a branch point stayed on the branch it came along.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .problem import Evaluator
+
+__all__ = ["BRANCH_POINT_RATIO", "branch_tangent_pair"]
+
+_EPS = np.finfo(float).eps
+
+#: largest smallest-singular-value ratio accepted at a branch point
+BRANCH_POINT_RATIO = 1e-6
+
+
+def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The unit tangents (each up to sign) of the two branches through the branch point ``x``:
+    the roots of the algebraic bifurcation equation (:func:`continuation.branch_tangents` has
+    the equations); :class:`ValueError` if ``x`` is not a simple branch point.
+    """
+    J = evaluator.jacobian(x)
+    n = J.shape[0]
+    if J.shape != (n, x.size) or not np.isfinite(J).all():
+        raise ValueError(f"jacobian(x_bp) must be finite of shape ({x.size - 1}, {x.size})")
+    left, singular_values, right = np.linalg.svd(J, full_matrices=True)
+    v1, v2 = right[n - 1], right[n]
+    psi = left[:, n - 1]
+    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(x))))
+    d1 = (evaluator.jacobian(x + h * v1) - evaluator.jacobian(x - h * v1)) / (2.0 * h)
+    d2 = (evaluator.jacobian(x + h * v2) - evaluator.jacobian(x - h * v2)) / (2.0 * h)
+    a = float(psi @ d1 @ v1)
+    b = 0.5 * float(psi @ d1 @ v2 + psi @ d2 @ v1)
+    c = float(psi @ d2 @ v2)
+    quadratic = np.array([[a, b], [b, c]])
+    scale = singular_values[0] if n > 1 else float(np.max(np.abs(quadratic)))
+    if not singular_values[n - 1] <= BRANCH_POINT_RATIO * scale:
+        raise ValueError(
+            f"x_bp is not a branch point: the Jacobian's smallest singular value "
+            f"{singular_values[n - 1]:.3g} is not below {BRANCH_POINT_RATIO:g} x {scale:.3g}; "
+            "locate it first with locate_branch_point or take it from Curve.special"
+            "('branch_point')")
+    eigenvalues, rotation = np.linalg.eigh(quadratic)
+    if not eigenvalues[0] < 0 < eigenvalues[1]:
+        raise ValueError(
+            "x_bp is not a simple branch point: the algebraic bifurcation equation "
+            f"a*alpha^2 + 2*b*alpha*beta + c*beta^2 = 0 has a={a:.3g}, b={b:.3g}, c={c:.3g}, "
+            f"discriminant b^2 - a*c = {b * b - a * c:.3g} (must be > 0)")
+    tangents = []
+    for sign in (1.0, -1.0):
+        z = rotation @ np.array([math.sqrt(eigenvalues[1]), sign * math.sqrt(-eigenvalues[0])])
+        t = z[0] * v1 + z[1] * v2
+        tangents.append(t / np.linalg.norm(t))
+    return tangents[0], tangents[1]
