@@ -31,6 +31,10 @@ __all__ = ["Found", "add_step", "append_end", "drop_unresolved_folds", "fold_inc
 #: components of a singular start's tangent at most this large are taken as zero
 BRANCH_TANGENT_NOISE = 1e-7
 
+#: a coordinate whose tangent component stays at most this large is flat along a stretch
+#: (:func:`drop_unresolved_folds`); the rounding noise of a constant coordinate is 1e-8 or less
+TANGENT_FLAT = 1e-6
+
 
 class Found(NamedTuple):
     located: Located
@@ -275,39 +279,52 @@ def drop_unresolved_folds(run: Run) -> None:
     consecutive folds of ``x_i`` the coordinate is monotone, so each fold has a *persistence*,
     how far ``x_i`` moves to its neighbours (the folds beside it, or the curve's ends). As in
     the simplification of a function's extrema by persistence, the adjacent pair of folds
-    closest in ``x_i`` is removed while it is closer than the points' noise,
-    ``100 tol (1 + max|x|)`` (the corrector accepts points to ``tol (1 + max|x|)``), and then a
-    fold left with both ends of the curve within that noise. A fold next to one end only
-    (entering the curve there) is kept: elsewhere ``x_i`` moves on.
+    closest in ``x_i`` is removed while it is flat: closer in ``x_i`` than the points' noise,
+    ``100 tol (1 + max|x|)``, with ``|t_i| <= TANGENT_FLAT`` at every point from the one before
+    the pair to the one after it (a real pair next to a cusp is as close in ``x_i``, but ``x_i``
+    moves between its folds at a rate far above rounding). Then a fold left within that noise
+    of both ends of a curve that is flat in ``x_i`` throughout goes too. A fold next to one end
+    only (entering the curve there) is kept: elsewhere ``x_i`` moves on.
     """
-    x = run.x
-    if not x:
+    if not run.x:
         return
+    tangents = np.abs(np.array(run.tangents))
+    removed: set[int] = set()
     for i in run.options.fold_coordinates:
         folds = sorted((p for p in run.special
                         if p.kind is SpecialKind.FOLD and p.coordinate == i),
                        key=lambda p: (p.index, p.s))
-        if not folds:
-            continue
-        values = [float(p.x[i]) for p in folds]
-        noises = [100.0 * run.options.tol * (1.0 + float(np.max(np.abs(p.x)))) for p in folds]
-        live = list(range(len(folds)))
-        while True:
-            pairs = [(abs(values[a] - values[b]), a, b)
-                     for a, b in zip(live, live[1:], strict=False)
-                     if abs(values[a] - values[b]) <= max(noises[a], noises[b])]
-            if not pairs:
-                break
-            _, a, b = min(pairs)
-            live = [k for k in live if k not in (a, b)]
-        first, last = float(x[0][i]), float(x[-1][i])
-        if len(live) == 1:
-            k = live[0]
-            if max(abs(values[k] - first), abs(values[k] - last)) <= noises[k]:
-                live = []
-        removed = {id(folds[k]) for k in range(len(folds)) if k not in live}
-        if removed:
-            run.special = [p for p in run.special if id(p) not in removed]
+        removed |= {id(p) for p in _unresolved(run, folds, i, tangents[:, i])}
+    if removed:
+        run.special = [p for p in run.special if id(p) not in removed]
+
+
+def _unresolved(run: Run, folds: list[SpecialPoint], i: int,
+                tangents: np.ndarray) -> list[SpecialPoint]:
+    """The folds of coordinate ``i`` (in order) that :func:`drop_unresolved_folds` removes;
+    ``tangents``: ``|t_i|`` at every point of the curve."""
+    values = [float(p.x[i]) for p in folds]
+    noises = [100.0 * run.options.tol * (1.0 + float(np.max(np.abs(p.x)))) for p in folds]
+    last = len(tangents) - 1
+
+    def flat(a: int, b: int) -> bool:
+        lo, hi = max(0, folds[a].index - 1), min(last, folds[b].index + 1)
+        return bool(np.max(tangents[lo:hi + 1]) <= TANGENT_FLAT)
+
+    live = list(range(len(folds)))
+    while True:
+        pairs = [(abs(values[a] - values[b]), a, b) for a, b in zip(live, live[1:], strict=False)
+                 if abs(values[a] - values[b]) <= max(noises[a], noises[b]) and flat(a, b)]
+        if not pairs:
+            break
+        _, a, b = min(pairs)
+        live = [k for k in live if k not in (a, b)]
+    if len(live) == 1:
+        k = live[0]
+        ends = max(abs(values[k] - float(run.x[0][i])), abs(values[k] - float(run.x[-1][i])))
+        if ends <= noises[k] and float(np.max(tangents)) <= TANGENT_FLAT:
+            live = []
+    return [folds[k] for k in range(len(folds)) if k not in live]
 
 
 def _sign_changes(values: list[float]) -> int:

@@ -167,8 +167,9 @@ def trace(
     located only to about ``tol`` over their distance.
 
     Folds in a coordinate the points do not resolve (constant along the curve, its tangent
-    component rounding noise) are dropped at the end of the run, pairs closer in ``x_i`` than
-    ``100 tol (1 + max|x|)`` first (:func:`continuation.special.drop_unresolved_folds`).
+    component rounding noise) are dropped at the end of the run: pairs closer in ``x_i`` than
+    ``100 tol (1 + max|x|)`` with ``|t_i| <= 1e-6`` around them
+    (:func:`continuation.special.drop_unresolved_folds`).
     """
     return follow(problem, x0, direction, options, events, tangent)
 

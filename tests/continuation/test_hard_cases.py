@@ -327,3 +327,24 @@ def test_a_close_pair_of_folds_and_a_fold_next_to_the_start_are_kept():
                   options=Options(fold_coordinates=(0,), max_arclength=0.1))
     assert curve.ok
     assert [round(float(p.x[1] / root), 8) for p in curve.special("fold")] == [-1.0, 1.0]
+
+
+@pytest.mark.parametrize(("e", "offset"), [(5e-6, None), (1e-6, None), (0.05, 1e6), (0.02, 1e6)])
+def test_a_real_pair_of_folds_close_in_its_coordinate_is_kept(e, offset):
+    # next to the cusp of u^3 - e u = lambda the two folds are 8.6e-9 apart in lambda for
+    # e = 5e-6 (below 100 tol), or a coordinate y = 1e6 raises the points' noise above their
+    # gap; lambda still moves between them at a rate e, far above rounding: both are kept
+    if offset is None:
+        problem = Problem(lambda x: np.array([x[1] ** 3 - e * x[1] - x[0]]),
+                          lambda x: np.array([[-1.0, 3.0 * x[1] ** 2 - e]]))
+        x0, direction = [-1.0 + e, -1.0], [0.0, 1.0]
+    else:
+        problem = Problem(
+            lambda x: np.array([x[1] ** 3 - e * x[1] - x[0], x[2] - offset]),
+            lambda x: np.array([[-1.0, 3.0 * x[1] ** 2 - e, 0.0], [0.0, 0.0, 1.0]]))
+        x0, direction = [-1.0 + e, -1.0, offset], [0.0, 1.0, 0.0]
+    curve = trace(problem, x0, direction=direction,
+                  options=Options(fold_coordinates=(0,), max_arclength=4.0))
+    assert curve.ok, curve.message
+    root = math.sqrt(e / 3.0)
+    assert [round(float(p.x[1] / root), 6) for p in curve.special("fold")] == [-1.0, 1.0]
