@@ -20,10 +20,15 @@ _EPS = np.finfo(float).eps
 BRANCH_POINT_RATIO = 1e-6
 
 
-def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray,
+                        length: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The unit tangents (each up to sign) of the two branches through the branch point ``x``:
     the roots of the algebraic bifurcation equation (:func:`continuation.branch_tangents` has
     the equations); :class:`ValueError` if ``x`` is not a simple branch point.
+
+    ``length``: a length scale of the curve (a step's width), where known: the differences'
+    step ``eps^(1/3) max(1, max|x|)`` then shrinks to ``eps^(1/3) max(max|x|, 100 length)``
+    for a curve much smaller than 1 near the origin.
     """
     J = evaluator.jacobian(x)
     n = J.shape[0]
@@ -32,7 +37,9 @@ def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray) -> tuple[np.ndarray
     left, singular_values, right = np.linalg.svd(J, full_matrices=True)
     v1, v2 = right[n - 1], right[n]
     psi = left[:, n - 1]
-    h = _EPS ** (1.0 / 3.0) * max(1.0, float(np.max(np.abs(x))))
+    size = float(np.max(np.abs(x)))
+    scale = max(1.0, size) if length is None else min(max(1.0, size), max(size, 100.0 * length))
+    h = _EPS ** (1.0 / 3.0) * scale
     d1 = (evaluator.jacobian(x + h * v1) - evaluator.jacobian(x - h * v1)) / (2.0 * h)
     d2 = (evaluator.jacobian(x + h * v2) - evaluator.jacobian(x - h * v2)) / (2.0 * h)
     a = float(psi @ d1 @ v1)

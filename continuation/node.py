@@ -103,27 +103,34 @@ def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], st
                             f"x={describe(x)}") from exc
 
 
-def bend(evaluator: Evaluator, node: Node) -> tuple[np.ndarray, np.ndarray, float]:
-    """``(H'(x), H'(x + e t), e)`` at a node, ``e = CURVATURE_STEP (1 + max|x|)``, computed
-    once, with the corrector's ``H'(x)`` where the node has it: the forward differences along
-    the tangent of :func:`curvature` and :func:`det_slope` (relative error about ``1e-7``, ample
-    for the models and signs they serve)."""
+def bend(evaluator: Evaluator, node: Node, length: float) -> tuple[np.ndarray, np.ndarray, float]:
+    """``(H'(x), H'(x + e t), e)`` at a node, computed once, with the corrector's ``H'(x)``
+    where the node has it: the forward differences along the tangent of :func:`curvature` and
+    :func:`det_slope` (relative error about ``1e-7``, ample for the models and signs they serve).
+
+    ``e = CURVATURE_STEP min(1 + max|x|, max(max|x|, 100 length))``: relative to the scale of
+    ``x`` (``1 + max|x|``, the tolerances' own), unless the curve's steps (``length``, the
+    step's width) show a curve much smaller than that near the origin, where an absolute
+    ``1e-7`` would span a good part of it.
+    """
     if node.bend is None:
         x, t = node.x, node.tangent
         jacobian = node.jacobian if node.jacobian is not None else evaluator.jacobian(x)
-        step = CURVATURE_STEP * (1.0 + max_abs(x))
+        size = max_abs(x)
+        step = CURVATURE_STEP * min(1.0 + size, max(size, 100.0 * length))
         node.bend = (jacobian, evaluator.jacobian(x + step * t), step)
     return node.bend
 
 
-def curvature(evaluator: Evaluator, node: Node) -> np.ndarray | None:
+def curvature(evaluator: Evaluator, node: Node, length: float) -> np.ndarray | None:
     """The curvature vector ``kappa = dt/ds`` at a node; ``None`` where ``[H'; t^T]`` is singular.
 
     ``[H'; t^T] kappa = [-H''[t, t]; 0]``, from differentiating ``H'(x(s)) t(s) = 0`` and
     ``t^T t = 1``; ``H''[t, t]`` is the forward difference ``(H'(x + e t) - H'(x)) t / e``
-    (:func:`bend`: one Jacobian, or two where the corrector left none).
+    (:func:`bend`: one Jacobian, or two where the corrector left none; ``length``: the step's
+    width).
     """
-    jacobian, shifted, step = bend(evaluator, node)
+    jacobian, shifted, step = bend(evaluator, node, length)
     t = node.tangent
     second = (shifted - jacobian) @ t / step
     factors = factor_bordered(jacobian, t)
@@ -132,7 +139,7 @@ def curvature(evaluator: Evaluator, node: Node) -> np.ndarray | None:
     return lu_solve(factors, np.append(-second, 0.0))
 
 
-def det_slope(evaluator: Evaluator, node: Node) -> float:
+def det_slope(evaluator: Evaluator, node: Node, length: float) -> float:
     """``d det M / ds`` at a node, ``M = [H'; t^T]`` (NaN where ``H'`` is not finite a step on).
 
     Jacobi's formula gives ``d det M / ds = det M tr(M^-1 dM/ds)`` with
@@ -141,7 +148,7 @@ def det_slope(evaluator: Evaluator, node: Node) -> float:
     is that of ``det [H'(x + e t); t^T]`` with the row ``t`` held fixed, here its forward
     difference over :func:`bend`'s step (one Jacobian and one factorisation).
     """
-    _, shifted, step = bend(evaluator, node)
+    _, shifted, step = bend(evaluator, node, length)
     if not all_finite(shifted):
         return math.nan
     factors = factor_bordered(shifted, node.tangent)

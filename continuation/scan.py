@@ -143,6 +143,8 @@ class StepScan:
         self.options = options
         self.events = events
         self.nodes = [a, b]
+        #: the step's width, the length scale of its finite differences (:func:`bend`)
+        self.width = b.s - a.s
         #: the run's linear events and their constant gradients
         self.linear = LinearEvents(events) if linear is None else linear
         self.describe = evaluator.problem.describe
@@ -338,7 +340,7 @@ class StepScan:
     def turning(self, node: Node) -> np.ndarray:
         """The curvature ``dt/ds`` at a node (:func:`curvature`), computed once."""
         if node.turning is None:
-            kappa = curvature(self.evaluator, node)
+            kappa = curvature(self.evaluator, node, self.width)
             if kappa is None:
                 raise LocateError(f"no curvature at the singular point "
                                   f"x={self.describe(node.x)}")
@@ -348,7 +350,7 @@ class StepScan:
     def det_slope(self, node: Node) -> float:
         """``d det [H'; t^T] / ds`` at a node (:func:`det_slope`), computed once."""
         if node.det_slope is None:
-            slope = det_slope(self.evaluator, node)
+            slope = det_slope(self.evaluator, node, self.width)
             if not math.isfinite(slope):
                 raise LocateError(f"the slope of det [H'; t^T] is {slope!r} at "
                                   f"x={self.describe(node.x)}")

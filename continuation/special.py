@@ -142,12 +142,13 @@ def _check_branch_kept(run: Run, scan: StepScan, a: Node, b: Node, located: Loca
     the step is too long when the two are not clearly told apart); the incoming branch is then
     corrected, from ``x* + d t_in + (d^2/2) kappa_a``, onto the hyperplane through ``b`` normal
     to its tangent, and must meet it at ``b`` (the other branch is about ``theta d`` away).
-    Where ``theta d`` is below the points' noise, ``b`` is on the branch point itself.
+    Where ``theta d / 4`` is below the points' accuracy ``tol (1 + max|x|)``, ``b`` is on the
+    branch point itself.
     """
     c = located.node if located.node is not None else cast(Correction, located.correction)
     x_star, s_star = c.x, located.s
     try:
-        pair = branch_tangent_pair(run.evaluator, x_star)
+        pair = branch_tangent_pair(run.evaluator, x_star, scan.width)
     except (ValueError, np.linalg.LinAlgError):
         return  # not a simple branch point to rounding: no pair of branches to tell apart
     kappa = scan.turning(a)
@@ -162,8 +163,8 @@ def _check_branch_kept(run: Run, scan: StepScan, a: Node, b: Node, located: Loca
     if min(angles) > 0.25 * theta or max(angles) < 0.75 * theta:
         raise StepUnresolved(f"{where}: too long to tell which branch it came along")
     d = b.s - s_star
-    if 0.25 * theta * d <= 100.0 * run.options.tol * (1.0 + float(np.max(np.abs(b.x)))):
-        # b is on the branch point, to the points' noise: the tangent computed there is noise
+    if 0.25 * theta * d <= run.options.tol * (1.0 + float(np.max(np.abs(b.x)))):
+        # b is on the branch point, to the points' accuracy: the tangent computed there is noise
         b.tangent = incoming
         return
     along = kappa - float(kappa @ incoming) * incoming

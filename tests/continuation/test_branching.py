@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from continuation import (
+    Event,
     Options,
     Problem,
     SpecialPoint,
@@ -308,3 +309,32 @@ def test_a_step_past_a_branch_point_stays_on_its_branch(a1, b1, a2, b2, l0, ds_m
     assert len(points) == len(crossings)
     for point, crossing in zip(points, sorted(crossings), strict=True):
         assert abs(point.x[0] - crossing) <= 1e-6
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e-4, 1e-6, 1e-7])
+def test_branch_points_of_a_small_curve_near_the_origin(scale):
+    # x = scale z, z1 = z0 + 3 z0^2 crossed by z1 = -z0 at z = 0 and (-2/3, 2/3), steps
+    # scaled with the curve: the differences along the tangent (curvature, slope of det,
+    # branch tangents) must shrink with it (an absolute 1e-7 spans a good part of the
+    # curve at 1e-6, and the steps near the branch point were all rejected)
+    def residual(x):
+        z = x / scale
+        return np.array([(z[1] - z[0] - 3.0 * z[0] ** 2) * (z[1] + z[0])])
+
+    def jacobian(x):
+        z = x / scale
+        first, second = z[1] - z[0] - 3.0 * z[0] ** 2, z[1] + z[0]
+        return np.array([[-(1.0 + 6.0 * z[0]) * second + first, first + second]]) / scale
+
+    end = Event("z0 = 1", lambda x: x[0] / scale - 1.0, terminal=True)
+    curve = trace(Problem(residual, jacobian), scale * np.array([-1.0, 2.0]),
+                  direction=[1.0, -5.0], events=[end],
+                  options=Options(ds=0.05 * scale, ds_max=0.2 * scale, ds_min=1e-12 * scale,
+                                  max_arclength=100.0 * scale))
+    assert curve.status is Status.TERMINAL_EVENT, curve.message
+    z = curve.x / scale
+    assert np.max(np.abs(z[:, 1] - z[:, 0] - 3.0 * z[:, 0] ** 2)) <= 1e-6
+    points = [p.x / scale for p in curve.special("branch_point")]
+    assert len(points) == 2
+    assert np.max(np.abs(points[0] - [-2.0 / 3.0, 2.0 / 3.0])) <= 1e-6
+    assert np.max(np.abs(points[1])) <= 1e-6
