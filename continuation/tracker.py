@@ -160,11 +160,14 @@ def trace(
     past a branch point whose end is not on the branch it came along (corrected from the
     branch point along that branch's tangent, from the bifurcation equation).
 
-    Known limits: two branch points closer together than a step, on branches that cross at a
-    small angle (they nearly touch between the two), can be passed by a step that lands on
-    the other branch between them, and only one or neither is reported; lower ``ds_max``
-    where branches nearly touch. Two branch points closer than about ``sqrt(tol)`` are
-    located only to about ``tol`` over their distance.
+    Known limits: a pair of branch points much closer together than a step, whose
+    determinant dips and returns between the step's ends with little trace at them (a steep,
+    narrow branch crossing a straight one), is missed like an event's narrow dip; two branch
+    points closer together than a step, on branches that cross at a small angle (they nearly
+    touch between the two), can be passed by a step that lands on the other branch between
+    them, and only one or neither is reported. Lower ``ds_max`` below such a pair's spacing.
+    Two branch points closer than about ``sqrt(tol)`` are located only to about ``tol`` over
+    their distance.
 
     Folds in a coordinate the points do not resolve (constant along the curve, its tangent
     component rounding noise) are dropped at the end of the run: pairs closer in ``x_i`` than
