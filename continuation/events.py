@@ -203,9 +203,13 @@ def crossed(before: float, after: float, direction: int = 0) -> bool:
     """Whether a function crosses zero on a step, in ``(before, after]``.
 
     A zero at the step's start is not a crossing (it belongs to the previous
-    step, or is the start point); a zero at its end is.
+    step, or is the start point); a zero at its end is. The signs are compared, not
+    multiplied: a product of two tiny values (a zero at the start stands for ``1e-300`` on
+    the side the function moves to) underflows to zero and would read as a crossing.
     """
-    if before == 0.0 or not (before * after <= 0.0):
+    if before == 0.0 or not (after == 0.0 or (before > 0.0) != (after > 0.0)):
+        return False
+    if math.isnan(before) or math.isnan(after):
         return False
     if direction == 0:
         return True

@@ -145,6 +145,8 @@ def _check_branch_kept(run: Run, scan: StepScan, a: Node, b: Node, located: Loca
     Where ``theta d / 4`` is below the points' accuracy ``tol (1 + max|x|)``, ``b`` is on the
     branch point itself.
     """
+    if a.det == 0.0:
+        return  # a singular start: the step begins at the branch point, on the branch given
     c = located.node if located.node is not None else cast(Correction, located.correction)
     x_star, s_star = c.x, located.s
     try:

@@ -1,5 +1,6 @@
 """Branch points: located on a branch, tangents from the bifurcation equation, switching."""
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -16,6 +17,7 @@ from continuation import (
     switch_branch,
     trace,
 )
+from continuation.events import crossed
 
 OPTIONS = Options(max_arclength=2.0)
 
@@ -338,3 +340,36 @@ def test_branch_points_of_a_small_curve_near_the_origin(scale):
     assert len(points) == 2
     assert np.max(np.abs(points[0] - [-2.0 / 3.0, 2.0 / 3.0])) <= 1e-6
     assert np.max(np.abs(points[1])) <= 1e-6
+
+
+@pytest.mark.parametrize(("n", "scale"), [(3, 1e-8), (5, 1e-6), (5, 1e-12)])
+def test_switching_where_the_determinant_is_tiny(n, scale):
+    # the pitchfork u (lambda - u^2) with n - 1 equations x_j = sin(lambda), all times a
+    # small factor: det [H'; t^T] ~ scale^n at the first step from the branch point; the
+    # zero at the singular start (1e-300 on the side det moves to) times that underflowed to 0
+    # and read as a branch point at the start, and the switch failed after ~30 rejections
+    def residual(x):
+        return scale * np.array([x[1] * (x[0] - x[1] ** 2)]
+                                + [x[j] - math.sin(x[0]) for j in range(2, n + 1)])
+
+    def jacobian(x):
+        matrix = np.zeros((n, n + 1))
+        matrix[0, 0], matrix[0, 1] = x[1], x[0] - 3.0 * x[1] ** 2
+        for j in range(2, n + 1):
+            matrix[j - 1, 0], matrix[j - 1, j] = -math.cos(x[0]), 1.0
+        return scale * matrix
+
+    problem = Problem(residual, jacobian)
+    x0 = np.array([-1.0, 0.0] + [math.sin(-1.0)] * (n - 1))
+    line = trace(problem, x0, direction=np.eye(n + 1)[0],
+                 events=[Event("lambda = 1", lambda x: x[0] - 1.0, terminal=True)])
+    (point,) = line.special("branch_point")
+    branch = switch_branch(problem, point, options=Options(max_arclength=1.0))
+    assert branch.ok and branch.rejected_steps == 0, branch.message
+    assert np.max(np.abs(branch.x[:, 0] - branch.x[:, 1] ** 2)) <= 1e-8
+
+
+def test_a_crossing_is_judged_by_signs_not_by_a_product_that_underflows():
+    assert not crossed(1e-300, 7.5e-25) and crossed(1e-300, -7.5e-25)
+    assert crossed(-1e-300, 0.0) and not crossed(0.0, -1.0)
+    assert not crossed(1.0, math.nan) and not crossed(math.nan, -1.0)
