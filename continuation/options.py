@@ -79,7 +79,11 @@ class Options:
         Detect and locate simple branch points (sign changes of
         ``det [H'(x); t^T]``).
     detect_closed : bool
-        Detect a return to the start point and close the curve there.
+        Detect a return to the start point and close the curve there: the curve's point in
+        the hyperplane through the start, normal to its tangent, must lie within ``1e-6 (1 +
+        max|x0|)`` of the start, or within the points' accuracy at a loose ``tol``
+        (``tol (1 + max|x0|) + tol / sigma_min(H'(x0))``); curves that come back closer than
+        that without closing (a helix of a smaller pitch) are taken as closed.
     raise_on_failure : bool
         Raise :class:`continuation.ContinuationError` (carrying the partial
         curve) when the run ends with a failure status.

@@ -13,6 +13,7 @@ from typing import cast
 
 import numpy as np
 
+from .closing import closing_point
 from .corrector import NON_FINITE, SINGULAR, Correction, correct
 from .errors import CallbackError, CallbackShapeError
 from .events import Event
@@ -34,11 +35,6 @@ SINGULAR_RATIO = 1e-8
 #: accepted points interpolated by the predictor (3: quintic Hermite)
 PREDICTOR_NODES = 3
 
-#: a closing point must lie this close (relative to 1 + max|x0|) to the start
-CLOSE_TOLERANCE = 1e-6
-
-#: at a singular start, the step's arc must pass this close to it (relative to the chord)
-ARC_CLOSE = 1e-3
 
 #: a corrected point whose next Newton correction (its distance to the curve) exceeds this
 #: fraction of the step is not a point of the curve at that step's resolution: the step is
@@ -339,7 +335,7 @@ class _Stepper:
             new = _point_at_arclength(run, point, new, run.options.max_arclength)
         closing = None
         if run.options.detect_closed:
-            closing = _closing_point(run, self.start, point, new)
+            closing = closing_point(run, self.start, point, new)
         return (new if closing is None else closing), closing
 
     def _reject(self, h: float, reason: str, failure: Status) -> None:
@@ -536,47 +532,3 @@ def _point_at_arclength(run: Run, a: Node, b: Node, s: float) -> Node:
         return b
     return run.node(correction.x, s, correction.tangent, correction.det, correction.residual,
                     correction.iterations, correction.jacobian)
-
-
-def _closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
-    """The start point, if the step ``a -> b`` passes through it with the same tangent.
-
-    The step must cross the hyperplane through the start normal to its tangent
-    in the positive direction; the curve point in that hyperplane, corrected
-    from the Hermite arc, must then coincide with the start.
-    """
-    t0, x0 = start.tangent, start.x
-    g_a = float(t0 @ (a.x - x0))
-    g_b = float(t0 @ (b.x - x0))
-    if not (g_a < 0.0 <= g_b) or float(t0 @ a.tangent) <= 0.0:
-        return None
-    chord = b.x - a.x
-    tau = g_a / (g_a - g_b)
-    if np.linalg.norm(a.x + tau * chord - x0) > np.linalg.norm(chord):
-        return None
-    h = b.s - a.s
-    sigma = tau * h
-    for _ in range(5):
-        p, dp = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
-        slope = float(t0 @ dp)
-        if slope <= 0:
-            break
-        sigma = min(h, max(0.0, sigma - float(t0 @ (p - x0)) / slope))
-    p, _ = hermite(a.x, a.tangent, b.x, b.tangent, h, sigma)
-    scale = CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
-    angle = math.acos(max(-1.0, min(1.0, float(t0 @ a.tangent))))
-    if start.det == 0.0:
-        # a singular start (a branch point): H' vanishes in a direction at x0, so no Newton
-        # converges there to show that the curve is back; it is when the step's arc, whose
-        # error is far below this bound, passes through the start with the start's tangent
-        if float(np.linalg.norm(p - x0)) > max(scale, ARC_CLOSE * float(np.linalg.norm(chord))):
-            return None
-        return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
-                    start.residual, 0, start.events)
-    p = p - t0 * float(t0 @ (p - x0))
-    options = run.options
-    correction = correct(run.evaluator, p, t0, options.newton, need_tangent=False)
-    if not correction.ok or float(np.max(np.abs(correction.x - x0))) > scale:
-        return None
-    return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
-                start.residual, correction.iterations, start.events)

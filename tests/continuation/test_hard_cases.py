@@ -348,3 +348,29 @@ def test_a_real_pair_of_folds_close_in_its_coordinate_is_kept(e, offset):
     assert curve.ok, curve.message
     root = math.sqrt(e / 3.0)
     assert [round(float(p.x[1] / root), 6) for p in curve.special("fold")] == [-1.0, 1.0]
+
+
+@pytest.mark.parametrize(("tol", "ds"), [(1e-5, 1e-2), (1e-4, 1e-2), (1e-3, 1e-2), (3e-5, 1e-3)])
+def test_a_closed_curve_at_a_loose_tolerance_closes_after_one_lap(tol, ds):
+    # the corrector accepts points tol / |H'| off the circle: the closing point was 3e-6 from
+    # the start at tol = 1e-5, beyond the fixed 1e-6, and the run went round again, ok
+    circle = Problem(lambda x: np.array([x[0] ** 2 + x[1] ** 2 - 1.0]),
+                     lambda x: np.array([[2.0 * x[0], 2.0 * x[1]]]))
+    curve = trace(circle, [1.0, 0.0],
+                  options=Options(tol=tol, ds=ds, ds_max=ds, max_arclength=7.0, max_steps=10000))
+    assert curve.status is Status.CLOSED, curve.message
+    assert curve.s[-1] == pytest.approx(2.0 * math.pi, rel=1e-3)
+
+
+@pytest.mark.parametrize("pitch", [1e-2, 1e-3, 1e-4])
+def test_a_helix_whose_turns_the_tolerance_resolves_is_not_closed(pitch):
+    # x = cos(z / c), y = sin(z / c): each turn comes back `pitch` above the start; at
+    # tol = 1e-5 the points are good to about 3e-5, so a pitch of 1e-4 or more is no closure
+    c = pitch / (2.0 * math.pi)
+    helix = Problem(lambda x: np.array([x[0] - np.cos(x[2] / c), x[1] - np.sin(x[2] / c)]),
+                    lambda x: np.array([[1.0, 0.0, np.sin(x[2] / c) / c],
+                                        [0.0, 1.0, -np.cos(x[2] / c) / c]]))
+    curve = trace(helix, [1.0, 0.0, 0.0], direction=[0.0, 1.0, 0.0],
+                  options=Options(tol=1e-5, ds=0.01, ds_max=0.01, max_arclength=3.0 * math.pi,
+                                  max_steps=10000))
+    assert curve.status is Status.MAX_ARCLENGTH, curve.message
