@@ -35,6 +35,9 @@ SINGULAR_RATIO = 1e-8
 #: accepted points interpolated by the predictor (3: quintic Hermite)
 PREDICTOR_NODES = 3
 
+#: a corrected point at most this many steps ``h`` from the last point is accepted
+STEP_SLACK = 4.0
+
 
 #: a corrected point whose next Newton correction (its distance to the curve) exceeds this
 #: fraction of the step is not a point of the curve at that step's resolution: the step is
@@ -275,9 +278,17 @@ class _Stepper:
         alpha = 0.0
         if correction.ok:
             alpha = math.acos(max(-1.0, min(1.0, float(correction.tangent @ point.tangent))))
+            chord = float(np.linalg.norm(correction.x - point.x))
             if alpha > options.max_angle:
                 correction.ok = False
                 correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
+            elif chord > STEP_SLACK * h:
+                # Newton slid along the curve from a prediction off it (the predictor's
+                # direction is noise where tol is loose for the step): the step would exceed
+                # ds_max, which may be what resolves the curve's features
+                correction.ok = False
+                correction.reason = (f"the corrected point is {chord / h:.3g} steps from the "
+                                     "last point: Newton slid along the curve")
             elif correction.remaining > UNRESOLVED * self.ds:
                 # against the step size, not h: a last step cut short by max_arclength is
                 # as resolved as the steps before it
