@@ -44,6 +44,7 @@ STEP_SLACK = 4.0
 #: rejected (the tolerances, relative to ``1 + max|x|``, are too loose for the curve's scale)
 UNRESOLVED = 0.1
 _UNRESOLVED_REASON = "the corrected point meets the tolerances"
+_SLID_REASON = "the corrected point is"
 
 
 def trace(
@@ -287,8 +288,8 @@ class _Stepper:
                 # direction is noise where tol is loose for the step): the step would exceed
                 # ds_max, which may be what resolves the curve's features
                 correction.ok = False
-                correction.reason = (f"the corrected point is {chord / h:.3g} steps from the "
-                                     "last point: Newton slid along the curve")
+                correction.reason = (f"{_SLID_REASON} {chord / h:.3g} steps from the last "
+                                     "point: Newton slid along the curve")
             elif correction.remaining > UNRESOLVED * self.ds:
                 # against the step size, not h: a last step cut short by max_arclength is
                 # as resolved as the steps before it
@@ -504,6 +505,10 @@ def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
                   "size and coordinates are of order one), or the steps had shrunk for another "
                   "reason (the earlier rejections, logged at DEBUG level by "
                   "'continuation.tracker', say which)")
+    elif reason.startswith(_SLID_REASON):
+        advice = ("The points are accepted so far off the curve (tol) that the predictor's "
+                  "direction is noise at this step size: tighten Options.tol, or raise "
+                  "Options.ds_max")
     else:
         advice = ("The curve may end, turn sharply or be singular here: check the residual "
                   "and Jacobian near this point, loosen Options.tol, or lower Options.ds_min")
