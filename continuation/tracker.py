@@ -17,6 +17,7 @@ from .closing import closing_point
 from .corrector import NON_FINITE, SINGULAR, Correction, correct
 from .errors import CallbackError, CallbackShapeError
 from .events import Event
+from .linalg import max_abs
 from .node import EventNotFinite, LocateError, Node, StepUnresolved
 from .options import Options
 from .predictor import arc_length, extrapolate, hermite
@@ -37,6 +38,11 @@ PREDICTOR_NODES = 3
 
 #: a corrected point at most this many steps ``h`` from the last point is accepted
 STEP_SLACK = 4.0
+
+#: the predictor extrapolates the last points only where they lie further apart than this
+#: many times their noise ``tol (1 + max|x|)`` (closer, it would extrapolate the noise: the
+#: tangent is the prediction)
+NOISY = 100.0
 
 
 #: a corrected point whose next Newton correction (its distance to the curve) exceeds this
@@ -270,7 +276,8 @@ class _Stepper:
         """One step: predict, correct, accept (locating its special points) or reject, adapt."""
         run, options, point = self.run, self.run.options, self.point
         h = min(self.ds, options.max_arclength - point.s)
-        if self.nodes:
+        if self.nodes and point.s - self.nodes[-1].s > NOISY * options.tol * (
+                1.0 + max_abs(point.x)):
             x_pred, border, order = extrapolate((*self.nodes, point), h)
         else:
             x_pred, border, order = point.x + h * point.tangent, point.tangent, 2
