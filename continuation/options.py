@@ -50,10 +50,7 @@ class Options:
         Initial pseudo-arclength step.
     ds_min, ds_max : float
         Bounds of the step. A step rejected at ``ds_min`` ends the run with
-        ``Status.STEP_TOO_SMALL`` (or ``Status.NON_FINITE``). The step is the predictor's;
-        where the last points lie closer together than 100 times their noise
-        ``tol (1 + max|x|)``, the predictor follows the tangent rather than extrapolate the
-        noise, and a corrected point more than 4 steps away is rejected.
+        ``Status.STEP_TOO_SMALL`` (or ``Status.NON_FINITE``).
     max_steps : int
         Maximum number of accepted steps (a normal end, ``Status.MAX_STEPS``).
     max_arclength : float

@@ -17,7 +17,6 @@ from .closing import closing_point
 from .corrector import NON_FINITE, SINGULAR, Correction, correct
 from .errors import CallbackError, CallbackShapeError
 from .events import Event
-from .linalg import max_abs
 from .node import EventNotFinite, LocateError, Node, StepUnresolved
 from .options import Options
 from .predictor import arc_length, extrapolate, hermite
@@ -36,21 +35,12 @@ SINGULAR_RATIO = 1e-8
 #: accepted points interpolated by the predictor (3: quintic Hermite)
 PREDICTOR_NODES = 3
 
-#: a corrected point at most this many steps ``h`` from the last point is accepted
-STEP_SLACK = 4.0
-
-#: the predictor extrapolates the last points only where they lie further apart than this
-#: many times their noise ``tol (1 + max|x|)`` (closer, it would extrapolate the noise: the
-#: tangent is the prediction)
-NOISY = 100.0
-
 
 #: a corrected point whose next Newton correction (its distance to the curve) exceeds this
 #: fraction of the step is not a point of the curve at that step's resolution: the step is
 #: rejected (the tolerances, relative to ``1 + max|x|``, are too loose for the curve's scale)
 UNRESOLVED = 0.1
 _UNRESOLVED_REASON = "the corrected point meets the tolerances"
-_SLID_REASON = "the corrected point is"
 
 
 def trace(
@@ -276,8 +266,7 @@ class _Stepper:
         """One step: predict, correct, accept (locating its special points) or reject, adapt."""
         run, options, point = self.run, self.run.options, self.point
         h = min(self.ds, options.max_arclength - point.s)
-        if self.nodes and point.s - self.nodes[-1].s > NOISY * options.tol * (
-                1.0 + max_abs(point.x)):
+        if self.nodes:
             x_pred, border, order = extrapolate((*self.nodes, point), h)
         else:
             x_pred, border, order = point.x + h * point.tangent, point.tangent, 2
@@ -286,17 +275,9 @@ class _Stepper:
         alpha = 0.0
         if correction.ok:
             alpha = math.acos(max(-1.0, min(1.0, float(correction.tangent @ point.tangent))))
-            chord = float(np.linalg.norm(correction.x - point.x))
             if alpha > options.max_angle:
                 correction.ok = False
                 correction.reason = f"angle between tangents {alpha:.3g} > max_angle"
-            elif chord > STEP_SLACK * h:
-                # Newton slid along the curve from a prediction off it (the predictor's
-                # direction is noise where tol is loose for the step): the step would exceed
-                # ds_max, which may be what resolves the curve's features
-                correction.ok = False
-                correction.reason = (f"{_SLID_REASON} {chord / h:.3g} steps from the last "
-                                     "point: Newton slid along the curve")
             elif correction.remaining > UNRESOLVED * self.ds:
                 # against the step size, not h: a last step cut short by max_arclength is
                 # as resolved as the steps before it
@@ -512,10 +493,6 @@ def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
                   "size and coordinates are of order one), or the steps had shrunk for another "
                   "reason (the earlier rejections, logged at DEBUG level by "
                   "'continuation.tracker', say which)")
-    elif reason.startswith(_SLID_REASON):
-        advice = ("The points are accepted so far off the curve (tol) that the predictor's "
-                  "direction is noise at this step size: tighten Options.tol, or raise "
-                  "Options.ds_max")
     else:
         advice = ("The curve may end, turn sharply or be singular here: check the residual "
                   "and Jacobian near this point, loosen Options.tol, or lower Options.ds_min")
