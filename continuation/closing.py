@@ -7,7 +7,6 @@ import math
 import numpy as np
 
 from .corrector import correct
-from .linalg import all_finite
 from .node import Node
 from .predictor import arc_length, hermite
 from .run import Run
@@ -21,25 +20,16 @@ CLOSE_TOLERANCE = 1e-6
 ARC_CLOSE = 1e-3
 
 
-def _accuracy(run: Run, start: Node) -> float:
-    """How far the start and a point corrected to the same tolerances may lie apart on the
-    curve: ``tol (1 + max|x|)`` (the corrections) plus ``tol / sigma_min(H'(x0))`` (the
-    residual; at a loose ``tol`` the points are accepted that far off the curve)."""
-    tol, x0 = run.options.tol, start.x
-    jacobian = start.jacobian if start.jacobian is not None else run.evaluator.jacobian(x0)
-    sigma = float(np.linalg.svd(jacobian, compute_uv=False)[-1]) if all_finite(jacobian) else 0.0
-    return tol * (1.0 + float(np.max(np.abs(x0)))) + (tol / sigma if sigma > 0.0 else math.inf)
-
-
 def closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
     """The start point, if the step ``a -> b`` passes through it with the same tangent.
 
     The step must cross the hyperplane through the start normal to its tangent
     in the positive direction; the curve point in that hyperplane, corrected
     from the Hermite arc, must then coincide with the start: within ``CLOSE_TOLERANCE``
-    relative to ``1 + max|x0|``, or within the points' accuracy at a loose ``tol``
-    (:func:`_accuracy`; at most a tenth of the step's chord), where the corrector accepts
-    points that far off the curve and a closed curve was traced round again unnoticed.
+    relative to ``1 + max|x0|``, or at a loose ``tol`` within twice the points' accuracy
+    ``tol (1 + max|x0|)`` (the corrector's bound on its next correction: the start and the
+    closing point are each that close to the curve), where a closed curve was traced round
+    again unnoticed.
     """
     t0, x0 = start.tangent, start.x
     g_a = float(t0 @ (a.x - x0))
@@ -75,8 +65,7 @@ def closing_point(run: Run, start: Node, a: Node, b: Node) -> Node | None:
     if not correction.ok:
         return None
     distance = float(np.max(np.abs(correction.x - x0)))
-    if distance > scale and distance > min(_accuracy(run, start), 0.1 * float(
-            np.linalg.norm(chord))):
+    if distance > max(scale, 2.0 * options.tol * (1.0 + float(np.max(np.abs(x0))))):
         return None
     return Node(x0.copy(), a.s + arc_length(x0 - a.x, angle), start.tangent, start.det,
                 start.residual, correction.iterations, start.events)

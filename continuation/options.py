@@ -50,7 +50,10 @@ class Options:
         Initial pseudo-arclength step.
     ds_min, ds_max : float
         Bounds of the step. A step rejected at ``ds_min`` ends the run with
-        ``Status.STEP_TOO_SMALL`` (or ``Status.NON_FINITE``).
+        ``Status.STEP_TOO_SMALL`` (or ``Status.NON_FINITE``). The step is the predictor's:
+        where ``tol`` is loose for it (above about ``ds_max / 100``), the points' noise turns
+        the predictor and the corrected point can land a few steps further along the curve
+        (on it; up to 3.7 steps at ``tol = ds_max / 10``).
     max_steps : int
         Maximum number of accepted steps (a normal end, ``Status.MAX_STEPS``).
     max_arclength : float
@@ -81,9 +84,9 @@ class Options:
     detect_closed : bool
         Detect a return to the start point and close the curve there: the curve's point in
         the hyperplane through the start, normal to its tangent, must lie within ``1e-6 (1 +
-        max|x0|)`` of the start, or within the points' accuracy at a loose ``tol``
-        (``tol (1 + max|x0|) + tol / sigma_min(H'(x0))``); curves that come back closer than
-        that without closing (a helix of a smaller pitch) are taken as closed.
+        max|x0|)`` of the start, or within twice the points' accuracy ``tol (1 + max|x0|)``
+        at a loose ``tol``; a curve that comes back closer than that without closing (a helix
+        of a smaller pitch) is taken as closed.
     raise_on_failure : bool
         Raise :class:`continuation.ContinuationError` (carrying the partial
         curve) when the run ends with a failure status.

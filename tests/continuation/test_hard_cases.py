@@ -374,3 +374,19 @@ def test_a_helix_whose_turns_the_tolerance_resolves_is_not_closed(pitch):
                   options=Options(tol=1e-5, ds=0.01, ds_max=0.01, max_arclength=3.0 * math.pi,
                                   max_steps=10000))
     assert curve.status is Status.MAX_ARCLENGTH, curve.message
+
+
+@pytest.mark.parametrize("factor", [1.0, 1e-3, 1e-6])
+def test_a_helix_is_not_closed_whatever_the_scale_of_its_residual(factor):
+    # a closing test within tol / sigma_min(H') took a helix of pitch 1e-4 at tol = 1e-10 as
+    # closed once H was scaled by 1e-6; the points are good to tol (1 + max|x|) whatever H's
+    # scale (the corrector's bound on its next correction)
+    c = 1e-4 / (2.0 * math.pi)
+    helix = Problem(
+        lambda x: factor * np.array([x[0] - np.cos(x[2] / c), x[1] - np.sin(x[2] / c)]),
+        lambda x: factor * np.array([[1.0, 0.0, np.sin(x[2] / c) / c],
+                                     [0.0, 1.0, -np.cos(x[2] / c) / c]]))
+    curve = trace(helix, [1.0, 0.0, 0.0], direction=[0.0, 1.0, 0.0],
+                  options=Options(ds=0.01, ds_max=0.01, max_arclength=3.0 * math.pi,
+                                  max_steps=10000))
+    assert curve.status is Status.MAX_ARCLENGTH, curve.message
