@@ -207,9 +207,9 @@ def crossed(before: float, after: float, direction: int = 0) -> bool:
     multiplied: a product of two tiny values (a zero at the start stands for ``1e-300`` on
     the side the function moves to) underflows to zero and would read as a crossing.
     """
-    if before == 0.0 or not (after == 0.0 or (before > 0.0) != (after > 0.0)):
+    if before == 0.0 or math.isnan(before) or math.isnan(after):
         return False
-    if math.isnan(before) or math.isnan(after):
+    if not (after == 0.0 or (before > 0.0) != (after > 0.0)):
         return False
     if direction == 0:
         return True

@@ -99,6 +99,19 @@ def _event_slope(event: Event, node: Node, describe) -> float:
     return (event_value(event, forward, describe) - event_value(event, backward, describe)) / width
 
 
+def _same_sign(f_a: float, f_b: float) -> bool:
+    """Whether two end values are both positive or both negative (neither zero)."""
+    return (f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)
+
+
+def _bounded_away(f_a: float, f_b: float, m_a: float, m_b: float, width: float) -> bool:
+    """Whether the cubic Hermite model with end values ``f_a, f_b`` of one sign and end slopes
+    ``m_a, m_b`` (per unit arclength, over ``width``) provably stays above ``CLEAR`` times the
+    smaller end value: ``|P| >= min(|f_a|, |f_b|) - (4/27) width (|m_a| + |m_b|)``
+    (:meth:`StepScan._clear` has the bound)."""
+    return (4.0 / 27.0) * width * (abs(m_a) + abs(m_b)) <= (1.0 - CLEAR) * min(abs(f_a), abs(f_b))
+
+
 class StepScan:
     """The special points of one accepted step ``(a, b]``: brackets of zeros.
 
@@ -324,12 +337,8 @@ class StepScan:
         """
         a, b = self.nodes
         f_a, f_b = a.events[j], b.events[j]
-        if not ((f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)):
-            return False
-        smaller = min(abs(f_a), abs(f_b))
-        width = b.s - a.s
-        return (4.0 / 27.0) * width * (abs(self.slope(a, j)) + abs(self.slope(b, j))) \
-            <= (1.0 - CLEAR) * smaller
+        return _same_sign(f_a, f_b) and _bounded_away(f_a, f_b, self.slope(a, j),
+                                                      self.slope(b, j), b.s - a.s)
 
     def add(self, node: Node) -> None:
         """Insert a located curve point (e.g. a terminal event) as a node of the step."""
@@ -358,7 +367,7 @@ class StepScan:
         return node.det_slope
 
     def check_turn(self) -> None:
-        """:class:`LocateError` if the step's cubic Hermite arc bends otherwise than the curve.
+        """:class:`StepUnresolved` if the step's cubic Hermite arc bends otherwise than the curve.
 
         The arc through ``x_a, t_a, x_b, t_b`` (width ``h``, chord ``c = (x_b - x_a) / h``)
         has second derivatives ``(6 c - 4 t_a - 2 t_b) / h`` and ``(-6 c + 2 t_a + 4 t_b) / h``
@@ -373,7 +382,7 @@ class StepScan:
         a, b = self.nodes[0], self.nodes[-1]
         if a.det == 0.0 or b.det == 0.0:
             return
-        width = b.s - a.s
+        width = self.width
         # h p''(0) = 6 c - 4 t_a - 2 t_b = u + v, h p''(1) = v - u, with u = 6 c - 3 (t_a + t_b)
         u = (6.0 / width) * (b.x - a.x) - 3.0 * (a.tangent + b.tangent)
         v = b.tangent - a.tangent
@@ -382,8 +391,8 @@ class StepScan:
         limit = TURN_MISMATCH * self.options.max_angle
         if max(start, end) > limit:
             raise StepUnresolved(f"the step's arc bends {max(start, end):.3g} rad (more than "
-                              f"{limit:.3g}) off the curvature at its ends: the step is too long "
-                              "for the curve's bending, or it jumped to another branch")
+                                 f"{limit:.3g}) off the curvature at its ends: the step is too "
+                                 "long for the curve's bending, or it jumped to another branch")
 
     def branch_brackets(self, end: Node | None = None) -> list[tuple[Node, Node, float, float]]:
         """Brackets ``(lo, hi, det_lo, det_hi)`` of the sign changes of ``det [H'; t^T]``.
@@ -421,9 +430,9 @@ class StepScan:
         """
         a, b = self.nodes[0], self.nodes[-1]
         d_a, d_b = a.det, b.det
-        if not ((d_a > 0.0 and d_b > 0.0) or (d_a < 0.0 and d_b < 0.0)):
+        if not _same_sign(d_a, d_b):
             return False
-        width = b.s - a.s
+        width = self.width
         if previous is not None and previous.det != 0.0 and previous.s < a.s:
             # divided differences: q'(s_a) = f[p,a] + f[p,a,b] h_1, q'(s_b) = ... (h_1 + 2 h_2)
             h_1 = a.s - previous.s
@@ -432,8 +441,7 @@ class StepScan:
             m_a, m_b = first + second * h_1, first + second * (h_1 + 2.0 * width)
         else:
             m_a, m_b = self.det_slope(a), self.det_slope(b)
-        return (4.0 / 27.0) * width * (abs(m_a) + abs(m_b)) \
-            <= (1.0 - CLEAR) * min(abs(d_a), abs(d_b))
+        return _bounded_away(d_a, d_b, m_a, m_b, width)
 
     def fold_brackets(self, i: int, noise: float = 0.0,
                       end: Node | None = None) -> list[tuple[Node, Node, float, float]]:
