@@ -16,6 +16,9 @@ boundaries must
 * keep every row inside ``0 <= delta <= gamma <= pi/2`` and satisfy its equations to 1e-10
   (each relative to the size of its terms), with ``rs_limit`` within 1e-10 of ``dr_limit``.
 
+The same checks run for Poisson ratios 1/4 and 1/2 (compliance ratios 6/7 and 2/3), with the
+thresholds scaled by the ratio, over 60 log-spaced k and the neighbours of each threshold.
+
 The sweep is marked ``slow`` (``pytest -m "not slow"`` skips it); ``.ci/run`` runs it.
 """
 
@@ -25,7 +28,7 @@ import numpy as np
 import pytest
 
 from groove_model.model.boundaries import BoundarySystem
-from groove_model.model.parameters import Parameters
+from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)
@@ -48,12 +51,14 @@ SWEEP = sorted({
 })
 
 
-def expected_counts(k):
-    """Junctions, folds in gamma and folds in delta inside each physical curve (None: either)."""
+def expected_counts(k, c=1.0):
+    """Junctions, folds in gamma and folds in delta inside each physical curve (None: either),
+    for friction ``k`` and compliance ratio ``c`` (the thresholds are ``c / sqrt 2`` and
+    ``c sqrt 2``: the seeds' analysis depends on ``k / c`` only)."""
     def above(threshold):
         return None if abs(k / threshold - 1.0) <= BAND else k > threshold
 
-    branch, fold = above(K_BRANCH), above(K_FOLD)
+    branch, fold = above(c * K_BRANCH), above(c * K_FOLD)
     return {
         "dr_limit": (None if branch is None else int(branch), 0, 1),
         "rs_limit": (0, 0, 1),
@@ -172,10 +177,15 @@ def resampled(curve, params):
 @pytest.mark.slow
 @pytest.mark.parametrize("k", SWEEP, ids=lambda k: f"k={k:.17g}")
 def test_every_boundary_is_right_or_the_run_says_it_failed(k):
-    params = Parameters(k)
-    bs = trace_boundaries(k)
+    check_boundaries(Parameters(k))
+
+
+def check_boundaries(params):
+    """Every check of the module's docstring on the boundaries traced for ``params``."""
+    k, c = params.k, params.c
+    bs = trace_boundaries(params)
     assert bs.ok, bs.failures
-    counts, branch = expected_counts(k)
+    counts, branch = expected_counts(k, c)
 
     present = set(bs.curves)
     assert {"dr_limit", "rs_limit", "rs_no_roll"} <= present
@@ -186,7 +196,7 @@ def test_every_boundary_is_right_or_the_run_says_it_failed(k):
                 for p in bs.curves[name].special("junction")]
     if reported:
         junction = solve_independently("dr_limit", params, "junction", reported[0])
-        if abs(k / K_BRANCH - 1.0) > 1e-3:
+        if abs(k / (c * K_BRANCH) - 1.0) > 1e-3:
             # away from sqrt 2 upsilon = 0 crosses dr_limit transversally: a second solve
             system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
             # the paper's form is ill-conditioned near sqrt 2 (condition ~ 4e3 at
@@ -224,7 +234,7 @@ def test_every_boundary_is_right_or_the_run_says_it_failed(k):
             assert np.max(np.abs(x[0] - junction)) <= 1e-10
         # folds against a dense resampling of the curve; next to a threshold a fold sits within
         # |k/k* - 1| of a start and turns its coordinate by its square, below any resampling
-        if min(abs(k / K_FOLD - 1.0), abs(k / K_BRANCH - 1.0)) > 1e-6:
+        if min(abs(k / (c * K_FOLD) - 1.0), abs(k / (c * K_BRANCH) - 1.0)) > 1e-6:
             dense = resampled(curve, params)
             for i, kind in enumerate(("fold_gamma", "fold_delta")):
                 found = [p for p in curve.special(kind) if 0 < p.index < last]
@@ -236,6 +246,28 @@ def test_every_boundary_is_right_or_the_run_says_it_failed(k):
         end = bs.curves[name].x[-1]
         assert end[0] == pytest.approx(min(1e-3, 0.01 * params.gamma_limit), rel=1e-9)
     assert bs.limit_distance <= 1e-10
+
+
+#: the atlas's k_cross for the compliance ratios 6/7 and 2/3 (it does not scale with the ratio;
+#: only where the sweep samples depends on it)
+K_CROSS_OF = {0.25: 10.624857055305792, 0.5: 6.14561059336965}
+
+#: Poisson ratios of the compliance sweep (ratios c = 6/7 and 2/3: Mindlin's law, the paper's
+#: c = 1 being nu = 0), each with k log-spaced over the traced range and next to the thresholds
+#: c / sqrt 2, c sqrt 2 and k_cross
+COMPLIANCE_SWEEP = [
+    (nu, k) for nu in (0.25, 0.5) for k in sorted({
+        *np.geomspace(1e-4, 1e6, 60).tolist(),
+        *(threshold * (1.0 + sign * 10.0 ** -j)
+          for threshold in (Compliance.from_poisson(nu).ratio * K_FOLD,
+                            Compliance.from_poisson(nu).ratio * K_BRANCH, K_CROSS_OF[nu])
+          for j in (2, 4, 6, 8, 10) for sign in (1, -1))})]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("nu", "k"), COMPLIANCE_SWEEP, ids=lambda v: f"{v:.17g}")
+def test_every_boundary_is_right_for_every_poisson_ratio(nu, k):
+    check_boundaries(Parameters(k, Compliance.from_poisson(nu)))
 
 
 def test_a_junction_whose_second_solve_stalls_at_rounding():
