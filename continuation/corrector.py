@@ -241,7 +241,8 @@ def correct(
             first = length
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
-        if rnorm <= tol:
+        if rnorm <= tol and (small or accept_fallback):
+            # (the tangent of an iterate that is not accepted is only needed as a fallback)
             within = _with_tangent(factors, x, rnorm, k, first, contraction)
             if within is None:
                 return failure(SINGULAR, rnorm, k)

@@ -379,7 +379,7 @@ class BoundarySystem:
         """``dH/dx`` with respect to the chart coordinates, analytic: shape (3, 4) floats, or
         three rows of four numbers of ``numbers`` (see :meth:`residual`)."""
         if numbers is None:
-            return self.residual_and_jacobian(x)[1]
+            return self._float_jacobian(self._evaluate(x, FLOATS, True)[1])
         _, rows = self._evaluate(x, numbers, True)
         scale, number = self.scale, numbers.number
         return [[number(row[0] * scale), number(row[1] * scale), number(row[2]), number(row[3])]
@@ -388,10 +388,16 @@ class BoundarySystem:
     def residual_and_jacobian(self, x):
         """Both at once in floats (one evaluation of the shared trigonometry)."""
         values, rows = self._evaluate(x, FLOATS, True)
-        J = np.array(rows)
-        if self.scale != 1.0:
-            J[:, :2] *= self.scale
-        return np.array(values), J
+        return np.array(values), self._float_jacobian(rows)
+
+    def _float_jacobian(self, rows) -> np.ndarray:
+        """The rows of :func:`_rows` (columns of ``gamma`` and ``delta`` in radians) as the
+        Jacobian in the chart, ``(3, 4)`` floats (scaled on Python floats: a numpy slice
+        product costs more than the arithmetic on a 3 x 4 matrix)."""
+        scale = self.scale
+        if scale != 1.0:
+            rows = [(row[0] * scale, row[1] * scale, row[2], row[3]) for row in rows]
+        return np.array(rows)
 
     def edge_function(self, y, numbers=FLOATS):
         """A function with the sign of ``gamma - delta`` on the boundary, with a simple zero at
