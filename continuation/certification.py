@@ -304,15 +304,48 @@ class _Run:
                     return True
         return False
 
+    def _vanishes_near(self, function: Function, i: int) -> bool:
+        """Whether ``phi`` may vanish within the points' accuracy, ``node_tolerance (1 + |x_i|)``
+        in every coordinate, of point ``i``."""
+        radius = self.options.node_tolerance * (1.0 + float(np.max(np.abs(self.x[i]))))
+        near = [self.B.arb(float(c), radius) for c in self.x[i]]
+        J = self.problem.jacobian(near, self.B) if function.event is None else None
+        value = function.value(near, J, self.B)
+        return not (value > 0.0 or value < 0.0)
+
     def zeros(self, function: Function):
-        """Every zero of ``phi`` along the branch is reported (or at an end) and proven."""
+        """Every zero of ``phi`` along the branch is reported (or at an end) and proven.
+
+        If that fails with the signs the nodes' boxes give ``phi`` at the ends, it is tried
+        again with a zero at each end where ``phi`` may vanish within the points' accuracy
+        (:meth:`_vanishes_near`): a curve started on a zero of ``phi`` (a regime limit at a
+        junction) may start a rounding before it, where the node's box is small enough to give
+        ``phi`` a sign and the zero reads as a crossing on the first segment. That zero must
+        then be proven at the end point like any other (:meth:`_zero_at`): unique in the
+        monotone stretch next to it and inside its tubes. Either proof is a proof; if both
+        fail, the first failure is reported.
+        """
+        before = len(self.proven)
+        failure = self._zeros(function, ())
+        m = len(self.x) - 1
+        near = [i for i in (0, m) if self._vanishes_near(function, i)] if failure else []
+        if near:
+            first = self.proven[before:]
+            del self.proven[before:]
+            if self._zeros(function, near) is None:
+                return None
+            self.proven[before:] = first
+        return failure
+
+    def _zeros(self, function: Function, at_ends):
+        """:meth:`zeros`, with a zero at the end points ``at_ends`` whatever their signs."""
         m = len(self.x) - 1
         reported = self._reported(function)
         excluded: dict = {}
         self._exclude(function, 0, m, reported, excluded)
         signs = [self._sign_at(function, i, excluded) for i in range(m + 1)]
         for i in (0, m):
-            if signs[i] and self._vanishes_at_end(function, i):
+            if signs[i] and (i in at_ends or self._vanishes_at_end(function, i)):
                 signs[i] = 0
         at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments

@@ -10,7 +10,7 @@ from continuation import Event, SpecialKind, certify
 from continuation.certification import Check
 from continuation.numbers import FLOATS
 from groove_model.model.boundaries import BoundarySystem, dr_no_roll_branch_point
-from groove_model.model.parameters import Parameters
+from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
 from groove_model.tracing.assembly import domain_events, validity_events
 from groove_model.tracing.certification import CERTIFY_OPTIONS, certified_events
@@ -35,6 +35,20 @@ def test_every_boundary_is_proven(certified):
                                   if p.kind.value.startswith("fold"))
         for p in cert.special_points:
             assert p.radius <= 1e-5 and p.distance <= 1e-5
+
+
+@pytest.mark.parametrize("k, nu", [(134.90654205572514, 0.5), (16898.49786812462, 0.25),
+                                   (209.44511431514687, 0.0)])
+def test_rs_no_roll_from_a_junction_a_rounding_outside_its_regime_is_proven(k, nu):
+    # rs_no_roll starts at the junction, where d_L = 0; these starts lie a rounding on the
+    # side d_L < 0, which the first node's box resolves: the zero read as an unreported
+    # crossing of the first segment (most k above 30 with nu = 1/2 were not proven)
+    curve = trace_boundaries(Parameters(k, Compliance.from_poisson(nu)),
+                             certify=True).curves["rs_no_roll"]
+    assert curve.certificate.proven, curve.certificate.message
+    start = [p for p in curve.certificate.special_points
+             if p.index == 0 and p.kind is SpecialKind.EVENT]
+    assert start and all(p.distance <= 1e-9 for p in start)
 
 
 def test_what_is_not_covered_is_stated(certified):

@@ -131,6 +131,27 @@ def test_an_unreported_fold_is_rejected(cubic_curve):
     assert cert.point == fold or cert.segment in (fold - 1, fold), cert.message
 
 
+@pytest.mark.parametrize("offset, proven, at_start", [(1e-12, True, True), (-1e-12, True, False),
+                                                     (1e-7, False, False)])
+def test_a_curve_started_a_rounding_before_an_event_zero(cubic_curve, offset, proven, at_start):
+    # the curve starts at u = -2; the event vanishes at u = -2 + offset. Just after the start,
+    # within the points' accuracy (node_tolerance 1e-9), the zero is proven at the start point
+    # (a curve started on a regime limit at a junction); just before it, the curve does not
+    # cross it (proven without a zero); farther after it, the crossing is unreported
+    near = Event("u = -2 + offset", lambda x, numbers=FLOATS: x[1] - (-2.0 + offset))
+    cert = certify(cubic_curve, cubic(), [STOP, MARK, near])
+    assert cert.proven is proven, cert.message
+    zeros = [p for p in cert.special_points if p.event == 2]
+    if at_start:
+        assert [p.index for p in zeros] == [0] and not zeros[0].reported
+        assert abs(zeros[0].centre[1] - (-2.0 + offset)) <= zeros[0].radius + 1e-15
+    elif proven:
+        assert zeros == []
+    else:
+        assert cert.check is Check.EVENT and cert.segment == 0, cert.message
+        assert "u = -2 + offset" in cert.message and "no zero is reported" in cert.message
+
+
 def test_two_spliced_branches_are_rejected_at_the_splice():
     inner = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
     outer = trace(circles(), [2.0, 0.0], options=Options(fold_coordinates=(0, 1)))
