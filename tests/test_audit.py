@@ -332,7 +332,8 @@ def test_default_audit_runs_in_seconds(capsys):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["audit", "-k", "0"], "friction coefficient k = 0.0 is outside the allowed range"),
+    (["audit", "-k", "0"], "friction coefficient k = 0.0 is outside the range the boundaries "
+                           "are traced for: 1e-4 <= k <= 1e6"),
     (["audit", "-k", "abc"], "friction coefficient k = 'abc' is not a number"),
     (["map", "-k", "-2", "-o", "m.png"], "friction coefficient k = -2.0 is outside"),
     (["map", "-k", "1", "-o", "m.png", "--resolution", "1"],

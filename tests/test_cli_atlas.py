@@ -40,10 +40,14 @@ def test_atlas_command_with_a_poisson_ratio_names_its_files(tmp_path, capsys):
 
 @pytest.mark.parametrize("argv, message", [
     (["--k-min", "10", "--k-max", "1"], "--k-min 10 must be below --k-max 1"),
-    (["--k-min", "0"], "friction coefficient k = 0.0 is outside the allowed range"),
+    (["--k-min", "0"], "friction coefficient k = 0.0 is outside the range the boundaries are "
+                       "traced for: 1e-4 <= k <= 1e6"),
     (["--poisson", "0.6"], "Poisson ratio nu = 0.6 is outside the range the boundaries are "
                            "traced for: 0 <= nu <= 0.5"),
-    (["--compliance", "-1"], "compliance ratio = '-1' is outside the allowed range"),
+    (["--compliance", "-1"], "compliance ratio c = -1.0 is outside the range the boundaries are "
+                             "traced for: 2/3 <= c <= 1"),
+    (["--compliance", "inf"], "compliance ratio c = inf is outside the range the boundaries are "
+                              "traced for: 2/3 <= c <= 1"),
 ])
 def test_atlas_command_bad_input(argv, message, tmp_path, capsys):
     with pytest.raises(SystemExit) as info:

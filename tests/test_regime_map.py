@@ -18,7 +18,7 @@ from groove_model.analysis.regimes import CATEGORIES, OUTSIDE, classify_grid, cl
 from groove_model.model.boundaries import boundary_system
 from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
 from groove_model.model.lines import dr_limit_no_roll_point, dr_no_roll_line
-from groove_model.model.parameters import Parameters
+from groove_model.model.parameters import Compliance, Parameters
 from groove_model.plots import regime_map
 from groove_model.plots.overlay import MARKER_LABELS, STYLE_LABELS
 from groove_model.plots.regime_map import (
@@ -335,6 +335,24 @@ def test_map_legend_lists_only_what_is_drawn(traced):
         assert "deg" in ax.get_xlabel()
     finally:
         plt.close(fig)
+
+
+def test_a_map_for_another_compliance_says_so(tmp_path):
+    # the seed and the axis segments move to arctan(k/c), and the title names c: two maps of
+    # one k for two Poisson ratios cannot be mistaken for each other
+    params = Parameters(1.0, Compliance.from_poisson(0.5))
+    assert seed_points(params)[r"$(\arctan(k/c),\,0)$"] == (math.atan(1.5), 0.0)
+    fig, ax = plt.subplots()
+    try:
+        artists = draw_regime_map(ax, params, n=60, boundaries=False)
+        texts = [t.get_text() for t in artists["legend"].get_texts()]
+        assert r"double sliding ($\delta = 0$, $\gamma > \arctan(k/c)$)" in texts
+        assert not any(r"\arctan k" in text for text in texts)
+    finally:
+        plt.close(fig)
+    written = save_regime_map(params, tmp_path / "m.svg", n=60, formats=("svg",),
+                              boundaries=False)
+    assert "compliance ratio c = 0.6667" in written[0].read_text()
 
 
 def test_map_without_boundaries_traces_nothing(monkeypatch):

@@ -220,6 +220,7 @@ def test_sweep_command_of_200_k_writes_the_same_bytes_for_jobs_1_and_4(tmp_path)
     (["--k-min", "0", "--k-max", "1", "-n", "3"], "k"),
     (["--k-min", "1", "--k-max", "2", "-n", "0"], "-n"),
     (["--k-min", "1", "--k-max", "2", "-n", "3", "--jobs", "0"], "--jobs"),
+    (["--k-min", "1", "--k-max", "1", "-n", "3"], "would all be that one k"),
 ])
 def test_sweep_command_rejects_bad_input(tmp_path, capsys, argv, message):
     with pytest.raises(SystemExit) as exit_:

@@ -178,8 +178,10 @@ def friction(text: str) -> float:
 
 
 def traced_friction(text: str) -> float:
-    """Argument type of a ``k`` whose boundaries are traced: ``1e-4 <= k <= 1e6``."""
-    value = friction(text)
+    """Argument type of a ``k`` whose boundaries are traced: ``1e-4 <= k <= 1e6`` (the range
+    the messages name, also for a ``k`` that is not finite or not positive)."""
+    value = _number(text, f"friction coefficient k = {text!r} is not a number; allowed range "
+                          "1e-4 <= k <= 1e6")
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_friction
 
@@ -310,8 +312,10 @@ def _ratio(text: str) -> float:
 
 
 def _traced_ratio(text: str) -> float:
-    """Argument type of the compliance ratio of a traced command: ``2/3 <= c <= 1``."""
-    value = _ratio(text)
+    """Argument type of the compliance ratio of a traced command: ``2/3 <= c <= 1`` (the range
+    the messages name, also for a ratio that is not finite)."""
+    value = _number(text, f"compliance ratio c = {text!r} is not a number; allowed range "
+                          "2/3 <= c <= 1")
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_ratio
 

@@ -31,7 +31,7 @@ _EXAMPLES = """examples:
   groove map -k 2 -o fine.png --resolution 1200
 
 The map shades double rolling and rolling sliding, each clockwise or counter-clockwise, draws
-the axis segments delta = 0 (symmetric no-rotation below arctan k, double sliding above), and
+the axis segments delta = 0 (symmetric no-rotation below arctan(k/c), double sliding above), and
 overlays the traced boundaries with their special points and the paper's seed points.
 """
 

@@ -148,6 +148,9 @@ def run(args) -> int:
     if args.n == 1 and args.k_min != args.k_max:
         raise UsageError(f"-n 1 traces one k, but --k-min = {args.k_min!r} and --k-max = "
                          f"{args.k_max!r} differ: give -n >= 2, or the same k twice")
+    if args.n > 1 and args.k_min == args.k_max:
+        raise UsageError(f"-n {args.n} values of k from --k-min = {args.k_min!r} to --k-max = "
+                         f"{args.k_max!r} would all be that one k: give -n 1, or a wider range")
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     if args.certify:

@@ -71,17 +71,33 @@ _SQRT2 = math.sqrt(2.0)
 def seed_points(k) -> dict:
     """The seed points the paper names, ``label -> (gamma, delta)`` in radians.
 
-    ``(arctan k, 0)`` (start of the double-rolling limit), ``(arctan sqrt 2, 0)`` (branch point
-    of the double-rolling ``upsilon = 0`` line), ``(pi/4, pi/4)`` (end of both ``upsilon = 0``
-    lines) and, for ``k > sqrt 2``, the point of the double-rolling limit where ``upsilon = 0``.
-    The labels are matplotlib mathtext.
+    ``(arctan(k/c), 0)`` (start of the double-rolling limit; ``(arctan k, 0)`` for the paper's
+    compliance ``c = 1``), ``(arctan sqrt 2, 0)`` (branch point of the double-rolling
+    ``upsilon = 0`` line), ``(pi/4, pi/4)`` (end of both ``upsilon = 0`` lines) and, for
+    ``k > c sqrt 2``, the point of the double-rolling limit where ``upsilon = 0``. The labels
+    are matplotlib mathtext.
     """
     return _seed_points(Parameters.coerce(k))
 
 
+def _arctan(params: Parameters) -> str:
+    """``arctan k`` in mathtext, ``arctan(k/c)`` for a compliance ratio ``c != 1``."""
+    return r"\arctan k" if params.c == 1.0 else r"\arctan(k/c)"
+
+
+def _category_label(name: str, params: Parameters) -> str:
+    """The legend's text of region ``name`` (:data:`CATEGORY_LABELS`), with the axis segments
+    split at ``arctan(k/c)`` where the compliance ratio ``c`` is not the paper's 1."""
+    return CATEGORY_LABELS[name].replace(r"\arctan k", _arctan(params))
+
+
+def _seed_label(params: Parameters) -> str:
+    return rf"$({_arctan(params)},\,0)$"
+
+
 def _seed_points(params: Parameters) -> dict:
     points = {
-        r"$(\arctan k,\,0)$": (params.gamma_limit, 0.0),
+        _seed_label(params): (params.gamma_limit, 0.0),
         r"$(\arctan\sqrt{2},\,0)$": (math.atan(_SQRT2), 0.0),
         r"$(\pi/4,\,\pi/4)$": (0.25 * math.pi, 0.25 * math.pi),
     }
@@ -92,13 +108,18 @@ def _seed_points(params: Parameters) -> dict:
 
 
 def _label_offsets(params: Parameters) -> dict:
-    """Where each seed label goes, in points from the seed, chosen to keep labels apart."""
+    """Where each seed label goes, in points from the seed, chosen to keep labels apart (the
+    junction's to the right of the seed's where the two points are close, just above
+    ``k = c sqrt 2``)."""
     k_first = params.gamma_limit < math.atan(_SQRT2)
+    junction = dr_limit_no_roll_point(params)
+    close = junction is not None and math.hypot(float(junction[0]) - params.gamma_limit,
+                                                float(junction[1])) < 0.15
     return {
-        r"$(\arctan k,\,0)$": (-45, 30) if k_first else (-18, 28),
+        _seed_label(params): (-45, 30) if k_first else (-18, 28),
         r"$(\arctan\sqrt{2},\,0)$": (45, 30) if k_first else (-62, 40),
         r"$(\pi/4,\,\pi/4)$": (-82, 10),
-        r"$\upsilon = 0$ on the limit": (22, 26),
+        r"$\upsilon = 0$ on the limit": (78, 34) if close else (22, 26),
     }
 
 
@@ -192,7 +213,7 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
     artists["seeds"] = _label_seed_points(ax, params, scale)
     _frame_axes(ax, top, "deg" if degrees else "rad")
     if legend:
-        artists["legend"] = _legend(ax, codes, boundary_handles)
+        artists["legend"] = _legend(ax, codes, boundary_handles, params)
     return artists
 
 
@@ -207,7 +228,7 @@ def _shade(ax, codes: np.ndarray, top: float):
 
 
 def _draw_axis(ax, params: Parameters, scale: float) -> list:
-    """The triangle's edge and the two segments of ``delta = 0``, split at ``arctan k``."""
+    """The triangle's edge and the two segments of ``delta = 0``, split at ``arctan(k/c)``."""
     top = _HALF_PI * scale
     lines = ax.plot([0.0, top, top, 0.0], [0.0, 0.0, top, 0.0], color="0.35", lw=0.8, zorder=1)
     g_lim = params.gamma_limit * scale
@@ -258,7 +279,7 @@ def _frame_axes(ax, top: float, unit: str) -> None:
     ax.set_ylabel(rf"$\delta = (\theta_L - \theta_R)/2$ ({unit})")
 
 
-def _legend(ax, codes: np.ndarray, boundary_handles: list):
+def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters):
     """Each region present in words, the two axis segments, then the boundaries' entries."""
     present = set(np.unique(codes[codes != OUTSIDE]).tolist())
     present |= {CATEGORY_CODE[name] for name in _AXIS_SEGMENTS}
@@ -271,7 +292,7 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list):
             handles.append(Line2D([], [], color=CATEGORY_COLOURS[name], lw=4.5))
         else:
             handles.append(Patch(facecolor=CATEGORY_COLOURS[name], edgecolor="0.5", lw=0.5))
-        labels.append(CATEGORY_LABELS[name])
+        labels.append(_category_label(name, params))
     for handle, text in boundary_handles:
         if text == DIAGONAL_LABEL:
             continue
@@ -333,8 +354,9 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     fig = Figure(figsize=(7.2, 6.6), layout="constrained")
     ax = fig.subplots()
     _draw(ax, params, n, boundaries, degrees, boundary_set, legend=True)
-    ax.set_title(f"Regimes of a ball in a groove, friction coefficient k = {params.k:g}",
-                 fontsize=10)
+    compliance = "" if params.c == 1.0 else f", compliance ratio c = {params.c:.4g}"
+    ax.set_title(f"Regimes of a ball in a groove, friction coefficient k = {params.k:g}"
+                 + compliance, fontsize=10)
     written = []
     for fmt in formats:
         # the path as given for its own format (x.PNG stays x.PNG)

@@ -237,8 +237,16 @@ class Atlas:
 
 
 def _poisson(axis: Axis) -> float:
-    """The Poisson ratio of a fixed compliance ratio (NaN if none gives it)."""
+    """The Poisson ratio of a fixed compliance ratio (NaN if none gives it): the shortest
+    decimal whose Mindlin ratio is exactly ``c`` (``nu = 0.3``, not the ``0.30000000000000004``
+    the inverse formula rounds to), else the inverse itself."""
     c = axis.fixed
     # c = 2 (1 - nu)/(2 - nu)  <=>  nu = 2 (1 - c)/(2 - c)
     nu = 2.0 * (1.0 - c) / (2.0 - c) if c != 2.0 else math.nan
-    return nu if -1.0 < nu <= 0.5 else math.nan
+    if not -1.0 < nu <= 0.5:
+        return math.nan
+    for digits in range(1, 17):
+        short = round(nu, digits)
+        if 2.0 * (1.0 - short) / (2.0 - short) == c:
+            return short
+    return nu
