@@ -313,6 +313,18 @@ class _Run:
         value = function.value(near, J, self.B)
         return not (value > 0.0 or value < 0.0)
 
+    def _within_accuracy(self, function: Function, i: int) -> _Failure | None:
+        """A failure unless the zero just proven next to end point ``i`` (the last of
+        ``proven``) lies within the points' accuracy of it: a zero assumed at an end
+        (:meth:`zeros`) may be no farther, or a crossing inside the first or last segment would
+        pass for one at the end."""
+        tolerance = self.options.node_tolerance * (1.0 + float(np.max(np.abs(self.x[i]))))
+        distance = self.proven[-1].distance
+        if distance <= tolerance:
+            return None
+        return self._fail(function, f"its zero next to end point {i} lies {distance:.3g} from "
+                          f"it, beyond the points' accuracy {tolerance:.3g}", point=i)
+
     def zeros(self, function: Function):
         """Every zero of ``phi`` along the branch is reported (or at an end) and proven.
 
@@ -322,8 +334,9 @@ class _Run:
         junction) may start a rounding before it, where the node's box is small enough to give
         ``phi`` a sign and the zero reads as a crossing on the first segment. That zero must
         then be proven at the end point like any other (:meth:`_zero_at`): unique in the
-        monotone stretch next to it and inside its tubes. Either proof is a proof; if both
-        fail, the first failure is reported.
+        monotone stretch next to it and inside its tubes, and within the points' accuracy of
+        the end point (:meth:`_within_accuracy`). Either proof is a proof; if both fail, the
+        first failure is reported.
         """
         before = len(self.proven)
         failure = self._zeros(function, ())
@@ -351,6 +364,8 @@ class _Run:
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
+            if failure is None and i in at_ends and i not in reported:
+                failure = self._within_accuracy(function, i)
             if failure is not None:
                 return failure
             signs[i] = 0  # the zero proven at the point: counted there, not on its segments

@@ -152,6 +152,26 @@ def test_a_curve_started_a_rounding_before_an_event_zero(cubic_curve, offset, pr
         assert "u = -2 + offset" in cert.message and "no zero is reported" in cert.message
 
 
+def test_a_crossing_inside_the_first_segment_is_no_zero_at_the_start():
+    # u = 2e-9 lambda is flat in u: the event u = 5e-10 may vanish within the points' accuracy
+    # (1e-9) of the start, but it crosses at lambda = 0.25, inside the first segment of a curve
+    # whose points there (and its report of the crossing) were removed: a zero assumed at the
+    # start must lie within that accuracy of it, or the crossing would pass for one at the end
+    flat = Problem(lambda x, m=FLOATS: [x[1] - 2e-9 * x[0]], lambda x, m=FLOATS: [[-2e-9, 1.0]],
+                   names=("lambda", "u"))
+    stop = Event("lambda <= 3", lambda x, numbers=FLOATS: x[0] - 3.0, 1, True)
+    mark = Event("u = 5e-10", lambda x, numbers=FLOATS: x[1] - 5e-10, 1)
+    curve = trace(flat, [0.0, 0.0], direction=[1.0, 0.0], events=[stop, mark])
+    assert [p.x[0] for p in curve.special_points if p.event == 1] == pytest.approx([0.25])
+    rows = [i for i in range(len(curve)) if i == 0 or curve.x[i, 0] > 1.0]
+    wrong = _rows(curve, rows)
+    wrong = dataclasses.replace(wrong, special_points=tuple(
+        p for p in wrong.special_points if p.event != 1))
+    cert = certify(wrong, flat, [stop, mark])
+    assert not cert.proven and cert.check is Check.EVENT and cert.segment == 0, cert.message
+    assert "u = 5e-10" in cert.message and "no zero is reported" in cert.message
+
+
 def test_two_spliced_branches_are_rejected_at_the_splice():
     inner = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
     outer = trace(circles(), [2.0, 0.0], options=Options(fold_coordinates=(0, 1)))
