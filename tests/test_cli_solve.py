@@ -92,6 +92,16 @@ def test_solve_readable(capsys):
     assert "regime     double rolling" in text and "T/N_L" in text
 
 
+def test_solve_names_the_poisson_ratio_of_its_compliance(capsys):
+    argv = ["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"]
+    assert main([*argv, "--poisson", "0.3"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("k = 1, compliance ratio 0.8235294117647058 (Mindlin's for nu = 0.3),")
+    # --compliance overrides the ratio from --poisson: no nu is named
+    assert main([*argv, "--poisson", "0.3", "--compliance", "0.8"]) == 0
+    assert capsys.readouterr().out.startswith("k = 1, compliance ratio 0.8, gamma")
+
+
 @pytest.mark.parametrize(
     "argv, message",
     [

@@ -112,7 +112,7 @@ def run(args) -> int:
             out["dimensional"] = {key: _json_value(v) for key, v in dimensional.to_dict().items()}
         print(json.dumps(out))
         return EXIT_OK
-    _print_state(k, eq, dimensional, compliance.ratio)
+    _print_state(k, eq, dimensional, compliance.ratio, compliance.poisson)
     return EXIT_OK
 
 
@@ -144,12 +144,16 @@ def _dimensional(args, eq):
         raise UsageError(str(exc)) from None
 
 
-def _print_state(k: float, eq, dimensional, ratio: float = 1.0) -> None:
-    """The state in words; ``gamma`` and ``delta`` in full, so that they can be given back."""
+def _print_state(k: float, eq, dimensional, ratio: float = 1.0,
+                 poisson: float | None = None) -> None:
+    """The state in words; ``gamma`` and ``delta`` in full, so that they can be given back.
+    ``poisson``: the Poisson ratio the compliance ratio was computed from, if any."""
     # Imported here for the same reason as the solver in `run`.
     from ..model.parameters import k_text
 
     compliance = "" if ratio == 1.0 else f", compliance ratio {ratio!r}"
+    if compliance and poisson is not None:
+        compliance += f" (Mindlin's for nu = {k_text(poisson)})"
     print(f"k = {k_text(k)}{compliance}, gamma = {float(eq.gamma)!r} rad "
           f"({math.degrees(eq.gamma):.6g} deg), delta = {float(eq.delta)!r} rad "
           f"({math.degrees(eq.delta):.6g} deg)")
