@@ -209,7 +209,9 @@ class _Run:
 
     def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
         """Prove the zero of ``phi`` at point ``i``: the only one in the monotone stretch
-        through the point (the last run of the segment before, the first of the one after)."""
+        through the point (the last run of the segment before, the first of the one after),
+        within ``special_tolerance (1 + |x_i|)`` of the point if reported there, within the
+        points' accuracy ``node_tolerance (1 + |x_i|)`` if it is an unreported zero at an end."""
         m = len(self.x) - 1
         stretch = []
         if i > 0:
@@ -245,6 +247,17 @@ class _Run:
             return self._fail(function, f"the box of its zero at point {i} is not in the tubes "
                               "of the stretch through it", point=i)
         distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
+        # the box is centred at a Newton step of any length from the point: a reported zero
+        # must be within special_tolerance of it, an unreported one at an end of the curve
+        # within the points' accuracy (else a crossing inside the first or last segment, of an
+        # event steep across the curve or flat along it, would pass for one at the end)
+        at_end = not reported and i in (0, m)
+        limit = (self.options.node_tolerance if at_end else self.options.special_tolerance) \
+            * scale
+        if not distance <= limit:
+            where = "next to end point" if at_end else "at point"
+            return self._fail(function, f"its zero {where} {i} lies {distance:.3g} from it, "
+                              f"more than {limit:.3g}", point=i)
         kind = SpecialKind.EVENT if function.event is not None else SpecialKind.FOLD
         self.proven.append(ProvenPoint(kind, i, np.array(centre), radius, distance,
                                        function.coordinate, function.position, reported))
@@ -313,18 +326,6 @@ class _Run:
         value = function.value(near, J, self.B)
         return not (value > 0.0 or value < 0.0)
 
-    def _within_accuracy(self, function: Function, i: int) -> _Failure | None:
-        """A failure unless the zero just proven next to end point ``i`` (the last of
-        ``proven``) lies within the points' accuracy of it: a zero assumed at an end
-        (:meth:`zeros`) may be no farther, or a crossing inside the first or last segment would
-        pass for one at the end."""
-        tolerance = self.options.node_tolerance * (1.0 + float(np.max(np.abs(self.x[i]))))
-        distance = self.proven[-1].distance
-        if distance <= tolerance:
-            return None
-        return self._fail(function, f"its zero next to end point {i} lies {distance:.3g} from "
-                          f"it, beyond the points' accuracy {tolerance:.3g}", point=i)
-
     def zeros(self, function: Function):
         """Every zero of ``phi`` along the branch is reported (or at an end) and proven.
 
@@ -334,9 +335,8 @@ class _Run:
         junction) may start a rounding before it, where the node's box is small enough to give
         ``phi`` a sign and the zero reads as a crossing on the first segment. That zero must
         then be proven at the end point like any other (:meth:`_zero_at`): unique in the
-        monotone stretch next to it and inside its tubes, and within the points' accuracy of
-        the end point (:meth:`_within_accuracy`). Either proof is a proof; if both fail, the
-        first failure is reported.
+        monotone stretch next to it, inside its tubes, and within the points' accuracy of the
+        end point. Either proof is a proof; if both fail, the first failure is reported.
         """
         before = len(self.proven)
         failure = self._zeros(function, ())
@@ -364,8 +364,6 @@ class _Run:
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
-            if failure is None and i in at_ends and i not in reported:
-                failure = self._within_accuracy(function, i)
             if failure is not None:
                 return failure
             signs[i] = 0  # the zero proven at the point: counted there, not on its segments

@@ -172,6 +172,29 @@ def test_a_crossing_inside_the_first_segment_is_no_zero_at_the_start():
     assert "u = 5e-10" in cert.message and "no zero is reported" in cert.message
 
 
+def test_a_steep_event_does_not_carry_a_crossing_to_the_start():
+    # u = lambda; the event 5e-10 after the start is proven at the start (within the points'
+    # accuracy). The second event equals lambda - 0.05 along the curve but is steep across it
+    # (1e14 (u - lambda)): in that start's box it may vanish, and its crossing at
+    # lambda = 0.05, inside the first segment of a curve whose points and report there were
+    # removed, was proven as a zero at the start (the box of a zero is centred at a Newton step
+    # of any length from the point)
+    line = Problem(lambda x, m=FLOATS: [x[1] - x[0]], lambda x, m=FLOATS: [[-1.0, 1.0]],
+                   names=("lambda", "u"))
+    stop = Event("lambda <= 3", lambda x, numbers=FLOATS: x[0] - 3.0, 1, True)
+    near = Event("lambda = 5e-10", lambda x, numbers=FLOATS: x[0] - 5e-10)
+    plain = Event("lambda = 0.05", lambda x, numbers=FLOATS: x[0] - 0.05)
+    steep = Event("steep", lambda x, numbers=FLOATS: (x[0] - 0.05) + 1e14 * (x[1] - x[0]))
+    curve = trace(line, [0.0, 0.0], direction=[1.0, 0.0], events=[stop, near, plain])
+    rows = [i for i in range(len(curve)) if i == 0 or curve.x[i, 0] > 1.0]
+    wrong = _rows(curve, rows)
+    wrong = dataclasses.replace(wrong, special_points=tuple(
+        p for p in wrong.special_points if p.kind is not SpecialKind.EVENT or p.event == 0))
+    cert = certify(wrong, line, [stop, near, steep])
+    assert not cert.proven and cert.check is Check.EVENT, cert.message
+    assert "steep" in cert.message and "next to end point 0 lies 0.05" in cert.message
+
+
 def test_two_spliced_branches_are_rejected_at_the_splice():
     inner = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
     outer = trace(circles(), [2.0, 0.0], options=Options(fold_coordinates=(0, 1)))
