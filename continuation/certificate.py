@@ -42,9 +42,10 @@ class CertifyOptions:
     node_tolerance : float
         A point of the curve may be at most ``node_tolerance (1 + |x|)`` from the curve.
     special_tolerance : float
-        Largest radius of a special point's box, and largest distance of the reported point
-        from it (relative, as above). A zero at an end of the curve that is not reported (a
-        curve ending on an event) must lie within ``node_tolerance (1 + |x|)`` of it.
+        Largest radius of a special point's box, and largest distance of a zero proven at a
+        point of the curve from that point (relative, as above); except for a zero at an end
+        of the curve that is not reported there (a curve ending or starting on an event),
+        which must lie within ``node_tolerance (1 + |x|)`` of it.
     max_radius : float
         Largest tube radius, as a fraction of the segment's length (at least
         ``node_tolerance (1 + |x|)``); a segment whose tube would be wider is cut in parts.

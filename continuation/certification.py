@@ -308,22 +308,20 @@ class _Run:
         so a function vanishing there too (a fold component at the corner where the curve
         ends) vanishes between the last two points: a zero at the end, not a crossing.
         """
-        for p in self.proven:
-            if p.index == i and p.kind is SpecialKind.EVENT:
-                box = [self.B.arb(c, p.radius) for c in p.centre]
-                J = self.problem.jacobian(box, self.B) if function.event is None else None
-                value = function.value(box, J, self.B)
-                if not (value > 0.0 or value < 0.0):
-                    return True
-        return False
+        return any(self._may_vanish(function, p.centre, p.radius) for p in self.proven
+                   if p.index == i and p.kind is SpecialKind.EVENT)
 
     def _vanishes_near(self, function: Function, i: int) -> bool:
         """Whether ``phi`` may vanish within the points' accuracy, ``node_tolerance (1 + |x_i|)``
         in every coordinate, of point ``i``."""
         radius = self.options.node_tolerance * (1.0 + float(np.max(np.abs(self.x[i]))))
-        near = [self.B.arb(float(c), radius) for c in self.x[i]]
-        J = self.problem.jacobian(near, self.B) if function.event is None else None
-        value = function.value(near, J, self.B)
+        return self._may_vanish(function, self.x[i], radius)
+
+    def _may_vanish(self, function: Function, centre, radius: float) -> bool:
+        """Whether the enclosure of ``phi`` over the box ``|x - centre| <= radius`` holds 0."""
+        box = [self.B.arb(float(c), radius) for c in centre]
+        J = self.problem.jacobian(box, self.B) if function.event is None else None
+        value = function.value(box, J, self.B)
         return not (value > 0.0 or value < 0.0)
 
     def zeros(self, function: Function):

@@ -242,7 +242,8 @@ def correct(
         elif k == 1:
             contraction = dnorm / max(previous, 1e-300)
         if rnorm <= tol and (small or accept_fallback):
-            # (the tangent of an iterate that is not accepted is only needed as a fallback)
+            # (the tangent of an iterate that is not accepted is only needed as a fallback; one
+            # that would be singular there no longer ends the correction early)
             within = _with_tangent(factors, x, rnorm, k, first, contraction)
             if within is None:
                 return failure(SINGULAR, rnorm, k)

@@ -355,6 +355,15 @@ def test_a_map_for_another_compliance_says_so(tmp_path):
     assert "compliance ratio c = 0.6667" in written[0].read_text()
 
 
+@pytest.mark.parametrize("k, offset", [(1.5, (78, 34)), (10.0, (22, 26))])
+def test_the_junction_label_keeps_clear_of_the_seed_label(k, offset):
+    # just above k = sqrt 2 the junction lies next to the seed (arctan k, 0): its label goes
+    # to the right, clear of the seed's (they overlapped at k = 1.5)
+    params = Parameters(k)
+    points = regime_map._seed_points(params)
+    assert regime_map._label_offsets(params, points)[r"$\upsilon = 0$ on the limit"] == offset
+
+
 def test_map_without_boundaries_traces_nothing(monkeypatch):
     monkeypatch.setattr(regime_map, "trace_boundaries", lambda *a, **kw: pytest.fail("traced"))
     fig, ax = plt.subplots()

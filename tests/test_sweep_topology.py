@@ -16,8 +16,9 @@ boundaries must
 * keep every row inside ``0 <= delta <= gamma <= pi/2`` and satisfy its equations to 1e-10
   (each relative to the size of its terms), with ``rs_limit`` within 1e-10 of ``dr_limit``.
 
-The same checks run for Poisson ratios 1/4 and 1/2 (compliance ratios 6/7 and 2/3), with the
-thresholds scaled by the ratio, over 60 log-spaced k and the neighbours of each threshold.
+The same checks run for Poisson ratios 1/4 and 1/2 (compliance ratios c = 6/7 and 2/3), with
+the thresholds c/sqrt 2 and c sqrt 2, over 60 log-spaced k and the neighbours of c/sqrt 2,
+c sqrt 2 and each ratio's k_cross (90 values of k for each ratio).
 
 The sweep is marked ``slow`` (``pytest -m "not slow"`` skips it); ``.ci/run`` runs it.
 """
@@ -30,6 +31,7 @@ import pytest
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
+from groove_model.tracing.topology import thresholds
 
 SQRT2 = math.sqrt(2.0)
 K_FOLD, K_BRANCH = 1.0 / SQRT2, SQRT2
@@ -249,7 +251,7 @@ def check_boundaries(params):
 
 
 #: the atlas's k_cross for the compliance ratios 6/7 and 2/3 (it does not scale with the ratio;
-#: only where the sweep samples depends on it)
+#: only where the sweep samples depends on it; test_k_cross_of_the_compliance_sweep)
 K_CROSS_OF = {0.25: 10.624857055305792, 0.5: 6.14561059336965}
 
 #: Poisson ratios of the compliance sweep (ratios c = 6/7 and 2/3: Mindlin's law, the paper's
@@ -268,6 +270,13 @@ COMPLIANCE_SWEEP = [
 @pytest.mark.parametrize(("nu", "k"), COMPLIANCE_SWEEP, ids=lambda v: f"{v:.17g}")
 def test_every_boundary_is_right_for_every_poisson_ratio(nu, k):
     check_boundaries(Parameters(k, Compliance.from_poisson(nu)))
+
+
+@pytest.mark.parametrize("nu", sorted(K_CROSS_OF))
+def test_k_cross_of_the_compliance_sweep(nu):
+    # the sweep's samples next to k_cross are next to the atlas's (not a check of the tracer)
+    c = Compliance.from_poisson(nu).ratio
+    assert K_CROSS_OF[nu] == pytest.approx(thresholds(c).k_cross, rel=1e-12)
 
 
 def test_a_junction_whose_second_solve_stalls_at_rounding():

@@ -95,6 +95,9 @@ def _seed_label(params: Parameters) -> str:
     return rf"$({_arctan(params)},\,0)$"
 
 
+_JUNCTION_LABEL = r"$\upsilon = 0$ on the limit"
+
+
 def _seed_points(params: Parameters) -> dict:
     points = {
         _seed_label(params): (params.gamma_limit, 0.0),
@@ -103,32 +106,32 @@ def _seed_points(params: Parameters) -> dict:
     }
     junction = dr_limit_no_roll_point(params)
     if junction is not None:
-        points[r"$\upsilon = 0$ on the limit"] = (float(junction[0]), float(junction[1]))
+        points[_JUNCTION_LABEL] = (float(junction[0]), float(junction[1]))
     return points
 
 
-def _label_offsets(params: Parameters) -> dict:
+def _label_offsets(params: Parameters, points: dict) -> dict:
     """Where each seed label goes, in points from the seed, chosen to keep labels apart (the
-    junction's to the right of the seed's where the two points are close, just above
-    ``k = c sqrt 2``)."""
+    junction's to the right of the seed's where the two points are within 0.15 rad, for
+    ``c sqrt 2 < k < 1.26 c sqrt 2`` or so). ``points``: :func:`_seed_points`."""
     k_first = params.gamma_limit < math.atan(_SQRT2)
-    junction = dr_limit_no_roll_point(params)
-    close = junction is not None and math.hypot(float(junction[0]) - params.gamma_limit,
-                                                float(junction[1])) < 0.15
+    junction = points.get(_JUNCTION_LABEL)
+    close = junction is not None and math.hypot(junction[0] - params.gamma_limit,
+                                                junction[1]) < 0.15
     return {
         _seed_label(params): (-45, 30) if k_first else (-18, 28),
         r"$(\arctan\sqrt{2},\,0)$": (45, 30) if k_first else (-62, 40),
         r"$(\pi/4,\,\pi/4)$": (-82, 10),
-        r"$\upsilon = 0$ on the limit": (78, 34) if close else (22, 26),
+        _JUNCTION_LABEL: (78, 34) if close else (22, 26),
     }
 
 
-def _seed_label_area(params: Parameters) -> list:
+def _seed_label_area(params: Parameters, points: dict) -> list:
     """Points (radians) covered by the seed points and their labels, which the regions' names
     keep clear of (offsets converted at about 0.0037 rad per point, the default figure's)."""
-    offsets = _label_offsets(params)
+    offsets = _label_offsets(params, points)
     area = []
-    for label, (g, d) in _seed_points(params).items():
+    for label, (g, d) in points.items():
         dx, dy = offsets[label]
         steps = np.linspace(0.0, 1.0, 6)
         area += [(g + t * 0.0037 * dx, d + t * 0.0037 * (dy + 6)) for t in steps]
@@ -207,10 +210,12 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
                         "; ".join(boundary_set.failures))
         artists["boundary_set"] = boundary_set
         artists["boundaries"], boundary_handles = _overlay_boundaries(ax, boundary_set, degrees)
+    points = _seed_points(params)
     artists["regions"] = label_regions(
-        ax, region_label_positions([params], codes_list=[codes], avoid=_seed_label_area(params)),
+        ax, region_label_positions([params], codes_list=[codes],
+                                   avoid=_seed_label_area(params, points)),
         scale, color="0.1")
-    artists["seeds"] = _label_seed_points(ax, params, scale)
+    artists["seeds"] = _label_seed_points(ax, params, points, scale)
     _frame_axes(ax, top, "deg" if degrees else "rad")
     if legend:
         artists["legend"] = _legend(ax, codes, boundary_handles, params)
@@ -255,10 +260,10 @@ def _overlay_boundaries(ax, boundary_set, degrees: bool) -> tuple[list, list]:
     return artists, handles
 
 
-def _label_seed_points(ax, params: Parameters, scale: float) -> list:
+def _label_seed_points(ax, params: Parameters, points: dict, scale: float) -> list:
     artists = []
-    offsets = _label_offsets(params)
-    for label, (g, d) in _seed_points(params).items():
+    offsets = _label_offsets(params, points)
+    for label, (g, d) in points.items():
         xy = (g * scale, d * scale)
         artists += ax.plot(*xy, marker="o", ms=7, mfc="none", mec="black", mew=1.2, ls="",
                            zorder=4)

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..model.parameters import Compliance
 from .curves import PointKind
 from .families import Axis, BoundaryFamily
 
@@ -247,6 +248,6 @@ def _poisson(axis: Axis) -> float:
         return math.nan
     for digits in range(1, 17):
         short = round(nu, digits)
-        if 2.0 * (1.0 - short) / (2.0 - short) == c:
+        if -1.0 < short and Compliance.from_poisson(short).ratio == c:
             return short
     return nu
