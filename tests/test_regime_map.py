@@ -359,9 +359,14 @@ def test_a_map_for_another_compliance_says_so(tmp_path):
 def test_the_junction_label_keeps_clear_of_the_seed_label(k, offset):
     # just above k = sqrt 2 the junction lies next to the seed (arctan k, 0): its label goes
     # to the right, clear of the seed's (they overlapped at k = 1.5)
-    params = Parameters(k)
-    points = regime_map._seed_points(params)
-    assert regime_map._label_offsets(params, points)[r"$\upsilon = 0$ on the limit"] == offset
+    fig, ax = plt.subplots()
+    try:
+        artists = draw_regime_map(ax, k, n=40, boundaries=False, legend=False)
+        label = next(a for a in artists["seeds"] if hasattr(a, "get_text")
+                     and a.get_text() == r"$\upsilon = 0$ on the limit")
+        assert tuple(label.xyann) == offset
+    finally:
+        plt.close(fig)
 
 
 def test_map_without_boundaries_traces_nothing(monkeypatch):
