@@ -256,8 +256,8 @@ def test_a_range_that_is_not_a_pair_is_named(bad):
 
 @pytest.mark.parametrize("nu", [0.1, 0.3, 0.123456789])
 def test_the_poisson_ratio_of_an_atlas_is_the_one_given(nu):
-    # the atlas keeps the compliance ratio only; the nu it writes is the shortest decimal with
-    # that ratio (0.3, where inverting Mindlin's formula gives 0.30000000000000004)
+    # the atlas follows the compliance ratio; its tables write the nu given (0.3, where
+    # inverting Mindlin's formula gives 0.30000000000000004)
     atlas = trace_atlas((1.0, 3.0), Compliance.from_poisson(nu))
     rows = atlas.curve_table("dr_limit_fold_delta")
     assert rows and all(row[ATLAS_COLUMNS.index("nu")] == nu for row in rows)

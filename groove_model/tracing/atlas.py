@@ -165,11 +165,11 @@ def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None =
     """
     k_min, k_max = (check_traced_friction(check_friction(k))
                     for k in _pair("k_range", k_range, "(k_min, k_max)"))
-    if compliance is None:
-        compliance = Compliance()
-    ratio = compliance.ratio if isinstance(compliance, Compliance) else Compliance(
-        compliance).ratio
-    return atlas_in_k((k_min, k_max), check_traced_ratio(ratio), options)
+    if not isinstance(compliance, Compliance):
+        compliance = Compliance() if compliance is None else Compliance(compliance)
+    atlas = atlas_in_k((k_min, k_max), check_traced_ratio(compliance.ratio), options)
+    # the Poisson ratio as given, for the tables (the atlas itself keeps the ratio only)
+    return dataclasses.replace(atlas, poisson=compliance.poisson)
 
 
 def _pair(name: str, value, form: str) -> tuple:

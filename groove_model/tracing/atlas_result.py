@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..model.parameters import Compliance
 from .curves import PointKind
 from .families import Axis, BoundaryFamily
 
@@ -175,6 +174,10 @@ class Atlas:
         Curves that could not be followed to the end of the range or their death.
     seconds : float
         Wall time of the computation.
+    poisson : float or None
+        The Poisson ratio the fixed compliance ratio was computed from, as given
+        (``Compliance.poisson``); ``None``: the ratio was given, and the tables write the
+        Poisson ratio that Mindlin's law inverts it to.
     """
 
     axis: Axis
@@ -183,6 +186,7 @@ class Atlas:
     thresholds: tuple[Threshold, ...]
     failures: tuple[str, ...] = ()
     seconds: float = 0.0
+    poisson: float | None = None
 
     @property
     def ok(self) -> bool:
@@ -210,7 +214,7 @@ class Atlas:
             if threshold.curve == name:
                 marks[int(np.argmin(np.abs(curve.p - self.axis.to_p(threshold.value))))] = \
                     threshold.name
-        nu = _poisson(self.axis)
+        nu = self.poisson if self.poisson is not None else _poisson(self.axis)
         rows = []
         for i, p in enumerate(curve.p):
             k, c = self.axis.friction_and_ratio(p)
@@ -238,16 +242,8 @@ class Atlas:
 
 
 def _poisson(axis: Axis) -> float:
-    """The Poisson ratio of a fixed compliance ratio (NaN if none gives it): the shortest
-    decimal whose Mindlin ratio is exactly ``c`` (``nu = 0.3``, not the ``0.30000000000000004``
-    the inverse formula rounds to), else the inverse itself."""
+    """The Poisson ratio of a fixed compliance ratio (NaN if none gives it)."""
     c = axis.fixed
     # c = 2 (1 - nu)/(2 - nu)  <=>  nu = 2 (1 - c)/(2 - c)
     nu = 2.0 * (1.0 - c) / (2.0 - c) if c != 2.0 else math.nan
-    if not -1.0 < nu <= 0.5:
-        return math.nan
-    for digits in range(1, 17):
-        short = round(nu, digits)
-        if -1.0 < short and Compliance.from_poisson(short).ratio == c:
-            return short
-    return nu
+    return nu if -1.0 < nu <= 0.5 else math.nan
