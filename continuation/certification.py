@@ -38,7 +38,7 @@ import numpy as np
 from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import FLOATS, balls
-from .result import Curve, SpecialKind
+from .result import Curve, SpecialKind, Status
 from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
 
 __all__ = ["Certificate", "CertifyOptions", "Check", "Exclusion", "ProvenPoint", "certify"]
@@ -498,11 +498,12 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             failure = run.zeros(function)
             if failure is not None:
                 break
+    proven = _seam(curve, run.proven) if curve.status is Status.CLOSED else run.proven
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
     common: dict[str, Any] = dict(
         segments=len(run.segments), pieces=pieces, max_radius=radius,
-        node_distance=run.node_distance, special_points=tuple(run.proven),
+        node_distance=run.node_distance, special_points=tuple(proven),
         seconds=time.perf_counter() - start)
     note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
         "point to rounding)" if merged else ""
@@ -512,7 +513,30 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     m = len(curve.x) - 1
     return Certificate(True, f"proven: {m} segments ({pieces} tube pieces, radius <= "
                        f"{radius:.2g}), points within {run.node_distance:.2g} of the curve, "
-                       f"{len(run.proven)} zero(s) of folds and events proven{note}", **common)
+                       f"{len(proven)} zero(s) of folds and events proven{note}", **common)
+
+
+def _seam(curve: Curve, proven: list) -> list:
+    """The zeros of a closed curve without the second copy of each one at its seam.
+
+    A closed curve's last point is its first, so a zero there is proven at both ends; the one
+    the run does not report (an end's zero, ``reported = False``) is dropped when the other
+    end's box, for the same function, overlaps it (if neither is reported, the last one).
+    """
+    m = len(curve.x) - 1
+
+    def same(p: ProvenPoint, q: ProvenPoint) -> bool:
+        return (p.kind, p.coordinate, p.event) == (q.kind, q.coordinate, q.event) and \
+            float(np.max(np.abs(p.centre - q.centre))) <= p.radius + q.radius
+
+    def copy(p: ProvenPoint) -> bool:
+        # an unreported zero at an end, the same as a kept one at the other end: reported, or
+        # the first point's if neither is
+        return not p.reported and p.index in (0, m) and any(
+            q.index == m - p.index and (q.reported or q.index == 0) and same(p, q)
+            for q in proven)
+
+    return [p for p in proven if not copy(p)]
 
 
 #: points this close (relative to 1 + |x|) repeat the point before: a special point located twice

@@ -86,6 +86,29 @@ def test_closed_curves_are_proven(problem, start, folds):
     assert sum(p.reported for p in cert.special_points) == reported
 
 
+@pytest.mark.parametrize("direction, zeros, unreported", [(0, 6, 0), (-1, 5, 0), (1, 6, 1)])
+def test_a_zero_at_the_seam_of_a_closed_curve_is_listed_once(direction, zeros, unreported):
+    """The circle of radius 1 from (1, 0), clockwise: folds in x at (1, 0) (its seam) and
+    (-1, 0), in y at (0, +-1); y = 0 at (+-1, 0), downwards at the seam. An event for upward
+    crossings only is not reported at the seam, at neither end: the first end's copy is kept
+    (unreported); one for downward crossings has no zero at (-1, 0)."""
+    event = Event("y", lambda x, numbers=FLOATS: x[1], direction)
+    curve = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)),
+                  events=[event])
+    assert curve.status.name == "CLOSED"
+    cert = certify(curve, circles(), [event])
+    assert cert.proven, cert.message
+    assert len(cert.special_points) == zeros and f"{zeros} zero(s)" in cert.message
+    exact = [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)]
+    centres = [tuple(p.centre) for p in cert.special_points]
+    for p in cert.special_points:
+        assert min(max(abs(p.centre[0] - a), abs(p.centre[1] - b)) for a, b in exact) < 1e-9
+        same = [q for q in cert.special_points if (q.kind, q.coordinate, q.event)
+                == (p.kind, p.coordinate, p.event)]
+        assert sum(np.max(np.abs(q.centre - p.centre)) < 1e-6 for q in same) == 1, centres
+    assert sum(not p.reported for p in cert.special_points) == unreported
+
+
 def _rows(curve, rows, drop_kinds=()):
     """The curve restricted to ``rows`` (special points of dropped rows, or of the given
     kinds, removed and the rest re-indexed): a wrong curve that claims to be whole."""
