@@ -40,22 +40,40 @@ def test_every_boundary_is_proven(certified):
 
 @pytest.mark.parametrize("k, nu", [(134.90654205572514, 0.5), (16898.49786812462, 0.25),
                                    (209.44511431514687, 0.0)])
-def test_rs_no_roll_from_a_junction_a_rounding_outside_its_regime_is_proven(k, nu, monkeypatch):
-    # rs_no_roll starts at the junction, where d_L = 0; these starts lie a rounding on the
-    # side d_L < 0, which the first node's box resolves: the zero read as an unreported
-    # crossing of the first segment (most k above 30 with nu = 1/2 were not proven)
+@pytest.mark.parametrize("shift, proven", [(1e-13, True), (1e-10, True), (1e-7, False)])
+def test_rs_no_roll_started_outside_its_regime_is_proven_within_the_points_accuracy(
+        k, nu, shift, proven, monkeypatch):
+    # rs_no_roll starts at the junction, where d_L = 0. On one machine, for these (k, nu) (and
+    # most k above 30 with nu = 1/2), its start lay a rounding on the side d_L < 0, which the
+    # first node's box resolves, and the run did not report the zero there: it read as an
+    # unreported crossing of the first segment. Rounding differs between machines (elsewhere
+    # the run reports it at the start), so the case is built here: the start moved along the
+    # curve out of the regime and no zero of d_L reported at it. A zero within the points'
+    # accuracy (1e-9 (1 + |x|)) of the start is proven there, one farther inside is not.
     params = Parameters(k, Compliance.from_poisson(nu))
+    assert trace_boundaries(params, certify=True).curves["rs_no_roll"].certificate.proven
+    engine, system, events = _engine(params, "rs_no_roll")
+    d_L = next(e for e in events if "d_L >= 0" in e.name)
+    moved = _rows(engine, range(len(engine)))
+    moved.x[0] -= shift * engine.tangents[0]
+    moved = dataclasses.replace(moved, special_points=tuple(
+        p for p in moved.special_points
+        if not (p.index == 0 and p.kind is SpecialKind.EVENT and events[p.event] is d_L)))
+    assert d_L.function(moved.x[0]) < 0.0  # the start outside the regime
     with monkeypatch.context() as patch:
-        # the precondition: without the retry of a zero at an end these are not proven (so the
-        # cases still reach it after a change to the tracer)
+        # without the retry of a zero at an end: not proven (the crossing reads as unreported)
         patch.setattr(certification._Run, "_vanishes_near", lambda self, function, i: False)
-        before = trace_boundaries(params, certify=True).curves["rs_no_roll"].certificate
+        before = certify(moved, system, events, options=CERTIFY_OPTIONS)
         assert not before.proven and "d_L >= 0" in before.message, before.message
-    curve = trace_boundaries(params, certify=True).curves["rs_no_roll"]
-    assert curve.certificate.proven, curve.certificate.message
-    start = [p for p in curve.certificate.special_points
-             if p.index == 0 and p.kind is SpecialKind.EVENT]
-    assert start and all(p.distance <= 1e-9 for p in start)
+    cert = certify(moved, system, events, options=CERTIFY_OPTIONS)
+    assert cert.proven is proven, cert.message
+    if proven:
+        start = [p for p in cert.special_points if p.index == 0 and p.kind is SpecialKind.EVENT
+                 and events[p.event] is d_L]
+        assert len(start) == 1 and not start[0].reported
+        assert shift / 2 <= start[0].distance <= 1e-9
+    else:
+        assert cert.check is Check.EVENT and "d_L >= 0" in cert.message, cert.message
 
 
 def test_what_is_not_covered_is_stated(certified):
@@ -75,9 +93,10 @@ def test_the_csv_says_certified(certified, tmp_path):
 
 
 def _engine(k, name):
-    """An engine curve of the tracer with its system and certified events."""
-    params = Parameters(k)
-    curve = trace_boundaries(k).curves[name]
+    """An engine curve of the tracer with its system and certified events (``k`` a friction
+    coefficient or parameters)."""
+    params = k if isinstance(k, Parameters) else Parameters(k)
+    curve = trace_boundaries(params).curves[name]
     if name.endswith("limit"):
         system = BoundarySystem("dr_limit", params, "sqrt_beta_L", min(1.0, params.gamma_limit),
                                 conditioned=True)
