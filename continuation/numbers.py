@@ -350,8 +350,10 @@ class _Jets:
 
         ``bound(args, w)`` bounds ``|E|`` over the complex polydisc of radius ``w`` around
         the arguments. Along ``args + lam * dargs`` (``|lam| <= rho``) Cauchy's estimate gives
-        ``|E'| <= B / rho`` and ``|E''| <= 2 B / rho^2`` with ``B = bound(args, rho |dargs|)``;
-        the best of a few ``rho`` is taken.
+        ``|E'| <= B / rho`` and ``|E''| <= 2 B / rho^2`` with ``B = bound(args, rho |dargs|)``.
+        Along a curved path (arguments with second derivatives ``ddargs``) the second
+        derivative is ``D^2 E [dargs, dargs] + D E [ddargs]``, the latter bounded the same way
+        along ``ddargs``: ``B |ddargs| / w``. The best of a few ``w`` is taken.
         """
         base = self.base
         values = tuple(self.value(a) for a in args)
@@ -360,13 +362,18 @@ class _Jets:
             return error0
         intervals = tuple(base.bounds(v) for v in values)
         speed = max(base.bounds(abs(a.d))[1] if type(a) is Jet else 0.0 for a in args)
-        best1 = best2 = 0.0 if speed == 0.0 else math.inf
-        for widen in (1e-3, 1e-2, 3e-2, 0.1) if speed > 0.0 else ():
-            sup = bound(intervals, widen)
-            rho = widen / speed * (1.0 - 1e-12)  # the polydisc of radius widen holds the disc
-            best1 = min(best1, sup / rho * (1.0 + 1e-12))
-            best2 = min(best2, 2.0 * sup / (rho * rho) * (1.0 + 1e-12))
         second_order = any(type(a) is Jet and a.dd is not None for a in args)
+        curving = max(base.bounds(abs(a.dd))[1] if type(a) is Jet and a.dd is not None
+                      else 0.0 for a in args)
+        best1 = 0.0 if speed == 0.0 else math.inf
+        best2 = 0.0 if speed == 0.0 and curving == 0.0 else math.inf
+        for widen in (1e-3, 1e-2, 3e-2, 0.1) if not math.isfinite(best2) else ():
+            # the polydisc of radius widen holds the discs |lam| <= widen / speed along dargs
+            # and |mu| <= widen / curving along ddargs
+            sup = bound(intervals, widen) * (1.0 + 1e-12)
+            best1 = min(best1, sup * speed / widen * (1.0 + 1e-12))
+            best2 = min(best2, (2.0 * sup * speed * speed / (widen * widen)
+                                + sup * curving / widen) * (1.0 + 1e-12))
         return Jet(error0, base.error(best1), base.error(best2) if second_order else None)
 
     def is_finite(self, x) -> bool:

@@ -47,3 +47,32 @@ def test_the_package_imports_and_traces_without_python_flint():
             "    raise AssertionError('no ImportError')\n")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
+
+
+@pytest.mark.parametrize("d, dd", [((0.3, -0.2), None), ((0.3, -0.2), (0.0, 0.0)),
+                                   ((1e-6, 1e-6), (1.0, 1.0)), ((0.0, 0.0), (2.0, -0.5)),
+                                   ((0.5, 0.5), (-1.0, 3.0))])
+def test_the_remainder_of_a_quadrature_encloses_its_derivatives_along_a_curved_path(d, dd):
+    """``E(a) = eps sin(a0 + a1)`` with Cauchy's bound ``eps cosh(2 w)`` on the polydisc of
+    radius ``w``: along ``a(t)`` with ``a' = d``, ``a'' = dd`` the jets' remainder holds
+    ``E'`` and ``E'' = D^2 E [d, d] + D E [dd]``; the second term was missing once (a path
+    curved, with little speed: the chart ``beta_L = w^2`` of the deflated torque)."""
+    pytest.importorskip("flint")
+    B = balls()
+    m = jets(B)
+    eps, a = 1e-9, (0.4, 0.7)
+
+    def bound(intervals, w):
+        return eps * math.cosh(2.0 * w)
+
+    args = tuple(Jet(B.number(ai), B.number(di), None if dd is None else B.number(ddi))
+                 for ai, di, ddi in zip(a, d, dd or (0.0, 0.0), strict=True))
+    error = m.analytic_error(bound, args)
+    s, speed = a[0] + a[1], d[0] + d[1]
+    assert error.v.contains(eps * math.sin(s))
+    assert error.d.contains(eps * math.cos(s) * speed)
+    if dd is None:
+        assert error.dd is None
+    else:
+        second = -eps * math.sin(s) * speed ** 2 + eps * math.cos(s) * (dd[0] + dd[1])
+        assert error.dd.contains(second)
