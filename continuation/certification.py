@@ -200,11 +200,11 @@ class _Run:
         check = Check.EVENT if function.event is not None else Check.FOLD
         return _Failure(check, f"{function.name}: {message}", segment=segment, point=point)
 
-    def _leaves(self, function: Function, s: int, cache: dict):
+    def _leaves(self, function: Function, s: int, cache: dict, next_to_zero: bool = False):
         if s not in cache:
             segment = self.segments[s]
             cache[s] = classify(function, segment, self.problem, self.B, segment.orientation,
-                                self.options.leaf_depth)
+                                self.options.leaf_depth, centred_slope=next_to_zero)
         return cache[s]
 
     def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
@@ -215,11 +215,11 @@ class _Run:
         m = len(self.x) - 1
         stretch = []
         if i > 0:
-            before = self._leaves(function, i - 1, cache)
+            before = self._leaves(function, i - 1, cache, next_to_zero=True)
             length = self.segments[i - 1].frame.length
             stretch.append((i - 1, run_at(before, length) if before else None))
         if i < m:
-            after = self._leaves(function, i, cache)
+            after = self._leaves(function, i, cache, next_to_zero=True)
             stretch.append((i, run_at(after, 0.0) if after else None))
         signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
         if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:

@@ -54,6 +54,25 @@ class Function:
             value = kernel(problem.jacobian(x, J2))[self.coordinate]
         return value.d if type(value) is Jet else B.number(0.0)
 
+    def curvature(self, box, k, problem, B):
+        """Enclosure over ``box`` of the derivative of ``D phi [kappa]`` in the direction of
+        kernel vectors ``k`` (``kappa`` the kernel of ``H'``, ``k`` enclosing it):
+        ``D^2 phi [k, k] + D phi [D kappa [k]]``, from second-order jets along ``k`` and
+        first-order jets along ``D kappa [k]``."""
+        J2 = jets(B)
+        zero = B.number(0.0)
+        line = [Jet(b, kj, zero) for b, kj in zip(box, k, strict=True)]
+        turn = kernel(problem.jacobian([Jet(b, kj) for b, kj in zip(box, k, strict=True)], J2))
+        w = [c.d if type(c) is Jet else zero for c in turn]
+        along = [Jet(b, wj) for b, wj in zip(box, w, strict=True)]
+        if self.event is not None:
+            second, first = self.event.function(line, J2), self.event.function(along, J2)
+        else:
+            second = kernel(problem.jacobian(line, J2))[self.coordinate]
+            first = kernel(problem.jacobian(along, J2))[self.coordinate]
+        return ((second.dd if type(second) is Jet else zero)
+                + (first.d if type(first) is Jet else zero))
+
     def augmented(self, problem):
         """``(F, DF)`` of the augmented system ``(H, phi) = 0`` over any numbers."""
         def F(x, m):
@@ -108,13 +127,17 @@ def runs(leaves) -> list:
     return out
 
 
-def _leaf(function, piece, frame, problem, B, orientation: int):
+def _leaf(function, piece, frame, problem, B, orientation: int, centred_slope: bool):
     """The leaf of one tube piece, or ``None`` if no test decides.
 
     ``phi`` is excluded from zero if its enclosure over the piece's arc box is, or if its
     centred form in ``tau`` is: ``phi(x(tau_0)) + (d phi / d tau)(T) (T - tau_0)``, with the
     value at the arc's point on the slice ``tau_0`` (proven in a thin box) and
-    ``d phi / d tau = D phi [k] / (d tau / d lambda)``.
+    ``d phi / d tau = D phi [k] / (d tau / d lambda)``. It is monotone if ``D phi [k]`` has
+    one sign over the arc box, or its centred form in ``tau`` has (mean value theorem on
+    ``g = D phi [kappa]`` along the arc, whose derivative is :meth:`Function.curvature`
+    divided by ``d tau / d lambda``; only if ``centred_slope``: it costs four more evaluations
+    and decides little that halving does not, except next to a zero at a point).
     """
     s = _sign(function.value(piece.arc, piece.jacobian, B))
     if s:
@@ -131,14 +154,27 @@ def _leaf(function, piece, frame, problem, B, orientation: int):
     sigma = frame.speed(k)
     half = max(piece.hi - mid, mid - piece.lo) * (1.0 + 1e-15)
     s = _sign(function.value(centre, J, B) + slope / sigma * B.error(half))
-    return Leaf(True, s, piece.lo, piece.hi) if s else None
+    if s or not centred_slope:
+        return Leaf(True, s, piece.lo, piece.hi) if s else None
+    # the slope's centred form: D phi [kappa] at tau_0 plus its derivative along the arc,
+    # (D^2 phi [k, k] + D phi [D kappa [k]]) / (d tau / d lambda), over the piece (a slope
+    # that is small at an end of the piece and grows along it: a curve leaving an event's
+    # zero nearly tangentially)
+    J0 = J if J is not None else problem.jacobian(centre, B)
+    slope0 = function.slope(centre, kernel(J0), problem, B)
+    if not _sign(slope0):
+        return None  # no sign at tau_0 itself: the centred form cannot have one
+    curvature = function.curvature(piece.arc, k, problem, B) / sigma
+    d = _sign(slope0 + curvature * B.error(half))
+    return Leaf(False, d * orientation, piece.lo, piece.hi) if d else None
 
 
 #: most tube pieces one segment may be cut into to decide one function on it
 LEAF_BUDGET = 200
 
 
-def classify(function, segment, problem, B, orientation: int, depth: int = 40):
+def classify(function, segment, problem, B, orientation: int, depth: int = 40,
+             centred_slope: bool = False):
     """The leaves of ``phi`` on one segment (a list in order of ``tau``), or ``None``.
 
     ``segment`` has ``pieces`` (proven tube pieces) and ``frame``. A piece that neither test
@@ -146,13 +182,16 @@ def classify(function, segment, problem, B, orientation: int, depth: int = 40):
     shorter piece: the arc there is the same, being the only zero in either tube); only the
     undecided halves are cut again, so next to a zero with a small slope the leaves get as
     short as the slope needs, down to ``depth`` cuts and :data:`LEAF_BUDGET` pieces.
+    ``centred_slope``: try the slope's centred form too (next to a zero of ``phi`` at a point
+    of the curve, where halving alone cannot decide a slope that vanishes nearby).
     """
     found, budget = [], LEAF_BUDGET
     for piece in segment.pieces:
         stack = [(piece, 0)]
         while stack:
             current, level = stack.pop()
-            leaf = _leaf(function, current, segment.frame, problem, B, orientation)
+            leaf = _leaf(function, current, segment.frame, problem, B, orientation,
+                         centred_slope)
             if leaf is not None:
                 found.append(leaf)
                 continue

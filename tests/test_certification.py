@@ -76,6 +76,19 @@ def test_rs_no_roll_started_outside_its_regime_is_proven_within_the_points_accur
         assert cert.check is Check.EVENT and "d_L >= 0" in cert.message, cert.message
 
 
+@pytest.mark.parametrize("k", [1e-4, 1.371272434398401e-3])
+def test_rs_no_roll_leaving_the_seed_nearly_along_delta_0_is_proven(k):
+    # for small k rs_no_roll leaves its seed on delta = 0 with d delta / ds ~ 1.2 k^2: the
+    # stretch through the seed is monotone in delta only by the slope's centred form (not
+    # proven for k <= 1.4e-3 before it)
+    curve = trace_boundaries(k, certify=True).curves["rs_no_roll"]
+    cert = curve.certificate
+    assert cert.proven, cert.message
+    assert abs(curve.engine[0].tangents[0][1]) < 3e-6  # the case: nearly tangent
+    seed = [p for p in cert.special_points if p.index == 0 and p.kind is SpecialKind.EVENT]
+    assert seed and all(abs(p.centre[1]) <= p.radius and p.distance <= 1e-9 for p in seed)
+
+
 def test_what_is_not_covered_is_stated(certified):
     for _name, curve in certified.curves.items():
         excluded = curve.certificate.excluded

@@ -109,6 +109,73 @@ def test_a_zero_at_the_seam_of_a_closed_curve_is_listed_once(direction, zeros, u
     assert sum(not p.reported for p in cert.special_points) == unreported
 
 
+K = 100.0  # K sin u - K sin u: zero in floats, 2 K |sin u| wide in balls
+
+
+def wrapped_parabola(eps):
+    """``v = eps u + u^2``, its slope written ``eps + 2 u + K sin u - K sin u``: over a piece
+    the slope's enclosure is far wider than its change (as for a model's many terms)."""
+    return Problem(lambda x, m=FLOATS: [x[1] - eps * x[0] - x[0] * x[0]],
+                   lambda x, m=FLOATS: [[-(eps + 2.0 * x[0] + K * m.sin(x[0])
+                                           - K * m.sin(x[0])), 1.0]])
+
+
+def wrapped_cusp(a):
+    """``u = a v^2 / 2 + v^3 / 3`` (``du/dv = v (a + v)``: folds in ``u`` at ``v = 0`` and
+    ``-a``), with ``K v^2 - K v^2`` in its Jacobian."""
+    return Problem(lambda x, m=FLOATS: [x[0] - (0.5 * a * x[1] * x[1] + x[1] ** 3 / 3.0)],
+                   lambda x, m=FLOATS: [[1.0, -(a * x[1] + x[1] * x[1] + K * x[1] * x[1]
+                                              - K * x[1] * x[1])]])
+
+
+V_ZERO = Event("v = 0", lambda x, numbers=FLOATS: x[1])
+
+
+@pytest.mark.parametrize("eps", [1e-8, 1e-6, 1e-4])
+def test_an_event_left_nearly_tangentially_is_proven_at_the_start(eps):
+    # the curve starts on v = 0 with slope eps: the stretch through the start is monotone
+    # only by the slope's centred form (its enclosure over any piece but the shortest holds 0)
+    stop = Event("u <= 1", lambda x, numbers=FLOATS: x[0] - 1.0, 1, True)
+    curve = trace(wrapped_parabola(eps), [0.0, 0.0], direction=[1.0, eps],
+                  events=[V_ZERO, stop])
+    cert = certify(curve, wrapped_parabola(eps), [V_ZERO, stop])
+    assert cert.proven, cert.message
+    start = [p for p in cert.special_points if p.event == 0]
+    assert len(start) == 1 and start[0].index == 0 and not start[0].reported
+    assert np.max(np.abs(start[0].centre)) <= start[0].radius + 1e-15
+
+
+@pytest.mark.parametrize("eps", [-1e-8, -1e-6])
+def test_an_event_crossed_again_just_after_the_start_is_not_proven(eps):
+    # v = u (u + eps) < 0 on (0, -eps): two zeros 1e-8 or 1e-6 apart, not separated
+    stop = Event("u <= 1", lambda x, numbers=FLOATS: x[0] - 1.0, 1, True)
+    curve = trace(wrapped_parabola(eps), [0.0, 0.0], direction=[1.0, eps],
+                  events=[V_ZERO, stop])
+    cert = certify(curve, wrapped_parabola(eps), [V_ZERO, stop])
+    assert not cert.proven and cert.check is Check.EVENT, cert.message
+
+
+@pytest.mark.parametrize("a, folds", [(1e-6, [0.0]), (1e-4, [0.0]), (-1e-6, [0.0, 1e-6])])
+def test_a_fold_at_the_start_with_a_small_curvature_is_proven(a, folds):
+    stop = Event("v <= 1", lambda x, numbers=FLOATS: x[1] - 1.0, 1, True)
+    curve = trace(wrapped_cusp(a), [0.0, 0.0], direction=[0.0, 1.0], events=[stop],
+                  options=Options(fold_coordinates=(0,)))
+    cert = certify(curve, wrapped_cusp(a), [stop])
+    assert cert.proven, cert.message
+    found = sorted(p.centre[1] for p in cert.special_points if p.kind is SpecialKind.FOLD)
+    assert found == pytest.approx(folds, abs=1e-14)
+
+
+def test_a_fold_unreported_just_after_the_start_is_not_proven():
+    # du/dv = v (v - 1e-8): a fold in u at v = 1e-8 that the trace does not report
+    stop = Event("v <= 1", lambda x, numbers=FLOATS: x[1] - 1.0, 1, True)
+    curve = trace(wrapped_cusp(-1e-8), [0.0, 0.0], direction=[0.0, 1.0], events=[stop],
+                  options=Options(fold_coordinates=(0,)))
+    assert not curve.special("fold")
+    cert = certify(curve, wrapped_cusp(-1e-8), [stop])
+    assert not cert.proven and cert.check is Check.FOLD, cert.message
+
+
 def _rows(curve, rows, drop_kinds=()):
     """The curve restricted to ``rows`` (special points of dropped rows, or of the given
     kinds, removed and the rest re-indexed): a wrong curve that claims to be whole."""
