@@ -58,6 +58,10 @@ class CertifyOptions:
         Most halvings of a tube piece to decide the sign or monotonicity of a function (only
         the undecided halves are halved again, so near a zero with a small slope the leaves
         get as short as it needs; at most ``continuation.zeros.LEAF_BUDGET`` per segment).
+    refine : int
+        Most halvings of a segment whose tube is not proven, each by a point of the arc
+        inserted on its middle slice (a curve that bends on a scale below its step; the
+        inserted points are proven on the curve like the others).
     """
 
     node_tolerance: float = 1e-9
@@ -66,13 +70,14 @@ class CertifyOptions:
     extension: float = 1e-3
     max_depth: int = 10
     leaf_depth: int = 40
+    refine: int = 4
 
     def __post_init__(self) -> None:
         for name in ("node_tolerance", "special_tolerance", "max_radius", "extension"):
             value = getattr(self, name)
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0.0):
                 raise ValueError(f"CertifyOptions.{name} = {value!r} must be finite and > 0")
-        for name in ("max_depth", "leaf_depth"):
+        for name in ("max_depth", "leaf_depth", "refine"):
             value = getattr(self, name)
             if not (isinstance(value, int) and 0 <= value <= 60):
                 raise ValueError(f"CertifyOptions.{name} = {value!r} must be an int in [0, 60]")
@@ -131,8 +136,11 @@ class Certificate:
     check : Check or None
         The test that failed (``None`` if proven).
     segment, point : int or None
-        The first failing segment (between points ``segment`` and ``segment + 1``) or point.
+        The first failing segment (between points ``segment`` and ``segment + 1``) or point,
+        in the curve's own indices (``point`` is ``None`` for an inserted point, whose
+        segment is given).
     segments : int
+        Segments proven (after inserted points).
     pieces : int
         Tube pieces (segments after halving).
     max_radius : float
@@ -141,6 +149,8 @@ class Certificate:
         Largest proven distance from a point of the curve to the curve of zeros.
     special_points : tuple of ProvenPoint
     excluded : tuple of Exclusion
+    inserted_points : int
+        Points of the arc inserted where a segment's tube was not proven (``refine``).
     seconds : float
     """
 
@@ -155,6 +165,7 @@ class Certificate:
     node_distance: float = 0.0
     special_points: tuple = ()
     excluded: tuple = ()
+    inserted_points: int = 0
     seconds: float = 0.0
 
     def __str__(self) -> str:

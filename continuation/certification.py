@@ -9,6 +9,7 @@ ball arithmetic (every rounding outwards):
    tube (a radius per offset coordinate, reaching ``extension`` of its length beyond both
    ends) in which the zeros of ``H`` are exactly one smooth arc, a graph over one coordinate
    (parametrised Krawczyk test; van den Berg, Lessard & Mischaikow, Math. Comp. 79 (2010)).
+   A segment with no tube is halved by a point of the arc (:mod:`continuation.refine`).
 2. *Points*: every point of the curve is within ``node_distance`` of a zero of ``H`` (the
    zero of its slice), and that zero lies in the tubes on both sides of the point, so the arcs
    of consecutive segments overlap: one smooth branch from the first point to the last.
@@ -38,6 +39,7 @@ import numpy as np
 from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import FLOATS, balls
+from .refine import Points
 from .result import Curve, SpecialKind, Status
 from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
 
@@ -66,10 +68,10 @@ def _upper(x) -> float:
 class _Run:
     """The state of one certification: tubes, points and the proofs so far."""
 
-    def __init__(self, curve: Curve, problem, events, B, options: CertifyOptions) -> None:
-        self.curve, self.problem, self.events = curve, problem, tuple(events)
+    def __init__(self, points: Points, problem, events, B, options: CertifyOptions) -> None:
+        self.points, self.problem, self.events = points, problem, tuple(events)
         self.B, self.options = B, options
-        self.x = np.asarray(curve.x, float)
+        self.x = np.asarray(points.curve.x, float)
         self.segments: list[_Segment] = []
         self.nodes: list = []
         self.node_distance = 0.0
@@ -130,10 +132,12 @@ class _Run:
         node = solve_slice(self.problem, segment.frame, self.B, piece, tau,
                            self.options.node_tolerance * scale)
         if isinstance(node, str):
-            return _Failure(Check.POINT, f"point {i} is not proven on the curve: {node}", point=i)
+            return _Failure(Check.POINT, f"{self.points.point(i)} is not proven on the curve: "
+                            f"{node}", point=i)
         distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i], strict=True))
         if not distance <= self.options.node_tolerance * scale:
-            return _Failure(Check.POINT, f"point {i} is {distance:.3g} from the curve, more than "
+            return _Failure(Check.POINT, f"{self.points.point(i)} is {distance:.3g} from the "
+                            "curve, more than "
                             f"{self.options.node_tolerance * scale:.3g}", point=i)
         self.node_distance = max(self.node_distance, distance)
         return node
@@ -157,30 +161,47 @@ class _Run:
                            for yi, r in zip(y, piece.radii, strict=True))
         return False
 
+    @property
+    def curve(self) -> Curve:
+        return self.points.curve
+
     def arcs(self):
-        """Tubes, points and connections, segment by segment; the first failure or None."""
-        x, t = self.x, np.asarray(self.curve.tangents, float)
-        m = len(x) - 1
-        for i in range(m):
-            frame = Frame.build(x[i], t[i], x[i + 1], t[i + 1])
+        """Tubes, points and connections, segment by segment; the first failure or None.
+
+        A segment whose tube is not proven is halved by a point of the arc inserted on its
+        middle slice (:meth:`Points.insert`), up to ``options.refine`` times.
+        """
+        i = 0
+        while i < len(self.x) - 1:
+            m = len(self.x) - 1
+            t = self.curve.tangents
+            frame = Frame.build(self.x[i], t[i], self.x[i + 1], t[i + 1])
             if isinstance(frame, str):
-                return _Failure(Check.TUBE, f"segment {i}: {frame}", segment=i)
+                return _Failure(Check.TUBE, f"{self.points.segment(i)}: {frame}", segment=i)
             segment = self._tube(frame, i == 0, i == m - 1)
             if isinstance(segment, str):
-                return _Failure(Check.TUBE, f"segment {i} (points {i} to {i + 1}): no tube "
-                                f"proven: {segment}", segment=i)
+                if self.points.level[i] < self.options.refine and \
+                        self.points.insert(i, frame, self.problem):
+                    self.x = np.asarray(self.curve.x, float)
+                    continue
+                return _Failure(Check.TUBE, f"{self.points.segment(i)}: no tube proven: "
+                                f"{segment}", segment=i)
             if self.segments and segment.orientation != self.segments[-1].orientation:
-                return _Failure(Check.TUBE, f"segment {i}: the curve's kernel turns against "
-                                "the direction of travel (a branch point?)", segment=i)
+                return _Failure(Check.TUBE, f"{self.points.segment(i)}: the curve's kernel "
+                                "turns against the direction of travel (a branch point?)",
+                                segment=i)
             self.segments.append(segment)
             node = self._node(i, segment, 0.0)
             if isinstance(node, _Failure):
                 return node
             self.nodes.append(node)
             if i > 0 and not self.inside(node.box, i - 1):
-                return _Failure(Check.CONNECTION, f"the curve at point {i} does not lie in the "
-                                f"tubes on both sides: segments {i - 1} and {i} are not "
-                                "proven to be one branch", segment=max(i - 1, 0), point=i)
+                return _Failure(Check.CONNECTION, f"the curve at {self.points.point(i)} does "
+                                "not lie in the tubes on both sides: the segments before and "
+                                "after it are not proven to be one branch",
+                                segment=max(i - 1, 0), point=i)
+            i += 1
+        m = len(self.x) - 1
         last = self._node(m, self.segments[-1], self.segments[-1].frame.length)
         if isinstance(last, _Failure):
             return last
@@ -223,28 +244,32 @@ class _Run:
             stretch.append((i, run_at(after, 0.0) if after else None))
         signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
         if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:
-            return self._fail(function, f"the zero at point {i} is not proven to be the only one "
+            return self._fail(function, f"the zero at {self.points.point(i)} is not proven to "
+                              "be the only one "
                               "next to it (no monotone stretch through it)",
                               segment=stretch[0][0], point=i)
         direction = signs.pop()
         if reported and function.direction and direction != function.direction:
-            return self._fail(function, f"its zero at point {i} is reported but crosses the "
+            return self._fail(function, f"its zero at {self.points.point(i)} is reported but "
+                              "crosses the "
                               "other way", point=i)
         if not reported and 0 < i < m and (not function.direction
                                            or direction == function.direction):
-            return self._fail(function, f"vanishes at point {i}, where no zero is reported",
+            return self._fail(function, f"vanishes at {self.points.point(i)}, where no zero is "
+                              "reported",
                               point=i)
         scale = 1.0 + float(np.max(np.abs(self.x[i])))
         box = prove_zero(function, self.problem, self.x[i], self.B,
                          self.options.special_tolerance * scale)
         if isinstance(box, str):
-            return self._fail(function, f"its zero at point {i}: {box}", point=i)
+            return self._fail(function, f"its zero at {self.points.point(i)}: {box}", point=i)
         centre, radius = box
         balls_ = [self.B.arb(c, radius) for c in centre]
         # every run of the stretch is set here (a missing one failed above)
         if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch
                    if run is not None):
-            return self._fail(function, f"the box of its zero at point {i} is not in the tubes "
+            return self._fail(function, f"the box of its zero at {self.points.point(i)} is not "
+                              "in the tubes "
                               "of the stretch through it", point=i)
         distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
         # the box is centred at a Newton step of any length from the point: a reported zero
@@ -255,8 +280,9 @@ class _Run:
         limit = (self.options.node_tolerance if at_end else self.options.special_tolerance) \
             * scale
         if not distance <= limit:
-            where = "next to end point" if at_end else "at point"
-            return self._fail(function, f"its zero {where} {i} lies {distance:.3g} from it, "
+            where = "next to end" if at_end else "at"
+            return self._fail(function, f"its zero {where} {self.points.point(i)} lies "
+                              f"{distance:.3g} from it, "
                               f"more than {limit:.3g}", point=i)
         kind = SpecialKind.EVENT if function.event is not None else SpecialKind.FOLD
         self.proven.append(ProvenPoint(kind, i, np.array(centre), radius, distance,
@@ -372,14 +398,15 @@ class _Run:
             crossings = None if leaves is None else count_zeros(
                 leaves, signs[s], signs[s + 1], self.segments[s].frame.length)
             if crossings is None:
-                return self._fail(function, f"its zeros on segment {s} are not decided",
+                return self._fail(function, f"its zeros on {self.points.segment(s)} are not "
+                                  "decided",
                                   segment=s)
             for direction in crossings:
                 if not function.direction or direction == function.direction:
                     values = (float_value(function, self.problem, self.x[s]),
                               float_value(function, self.problem, self.x[s + 1]))
-                    return self._fail(function, f"crosses zero on segment {s} (points {s} to "
-                                      f"{s + 1}: {values[0]:.3g} to {values[1]:.3g}) where no "
+                    return self._fail(function, f"crosses zero on {self.points.segment(s)}, "
+                                      f"from {values[0]:.3g} to {values[1]:.3g}, where no "
                                       "zero is reported", segment=s)
         return None
 
@@ -487,33 +514,41 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     if fold_coordinates is None:
         fold_coordinates = curve.options.fold_coordinates if curve.options is not None else ()
     failure = _check(curve, problem, events, fold_coordinates)
-    curve, merged = _merge_duplicates(curve, _DUPLICATE)
-    if failure is None and len(curve) < 2:
+    points, merged = Points.of(curve, _DUPLICATE)
+    if failure is None and len(points.curve) < 2:
         failure = _Failure(Check.INPUT, "all its points are one point (to rounding)")
-    run = _Run(curve, problem, events, B, options)
+    run = _Run(points, problem, events, B, options)
     if failure is None:
         failure = run.arcs()
     if failure is None:
-        for function in _functions(curve, events, fold_coordinates):
+        for function in _functions(points.curve, events, fold_coordinates):
             failure = run.zeros(function)
             if failure is not None:
                 break
-    proven = _seam(curve, run.proven) if curve.status is Status.CLOSED else run.proven
+    proven = _seam(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
+    # in the caller's indices (a zero is proven only at a point of the caller's curve: at an
+    # inserted point it would be an unreported zero inside the curve, a failure)
+    proven = [dataclasses.replace(p, index=points.origin[p.index]) for p in proven]
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
     common: dict[str, Any] = dict(
         segments=len(run.segments), pieces=pieces, max_radius=radius,
         node_distance=run.node_distance, special_points=tuple(proven),
-        seconds=time.perf_counter() - start)
+        inserted_points=points.inserted, seconds=time.perf_counter() - start)
     note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
         "point to rounding)" if merged else ""
+    if points.inserted:
+        note += f" ({points.inserted} point(s) of the arc inserted where a segment's tube " \
+            "was not proven)"
     if failure is not None:
+        segment = None if failure.segment is None else points.segment_of(failure.segment)
+        point = None if failure.point is None else points.origin[failure.point]
         return Certificate(False, f"not proven: {failure.check}: {failure.message}{note}",
-                           failure.check, failure.segment, failure.point, **common)
-    m = len(curve.x) - 1
-    return Certificate(True, f"proven: {m} segments ({pieces} tube pieces, radius <= "
-                       f"{radius:.2g}), points within {run.node_distance:.2g} of the curve, "
-                       f"{len(proven)} zero(s) of folds and events proven{note}", **common)
+                           failure.check, segment, point, **common)
+    return Certificate(True, f"proven: {len(curve.x) - 1 - len(merged)} segments ({pieces} "
+                       f"tube pieces, radius <= {radius:.2g}), points within "
+                       f"{run.node_distance:.2g} of the curve, {len(proven)} zero(s) of folds "
+                       f"and events proven{note}", **common)
 
 
 def _seam(curve: Curve, proven: list) -> list:
@@ -541,27 +576,3 @@ def _seam(curve: Curve, proven: list) -> list:
 
 #: points this close (relative to 1 + |x|) repeat the point before: a special point located twice
 _DUPLICATE = 1e-13
-
-
-def _merge_duplicates(curve: Curve, tolerance: float) -> tuple[Curve, list]:
-    """The curve without points that repeat the point before (special points located twice at
-    one place); their special points move to the kept point. Returns it and the dropped rows.
-
-    Indices of the returned curve (and so of failures) count the kept points only.
-    """
-    x = np.asarray(curve.x, float)
-    if len(x) < 2:
-        return curve, []
-    step = np.max(np.abs(np.diff(x, axis=0)), axis=1)
-    scale = 1.0 + np.max(np.abs(x[1:]), axis=1)
-    dropped = [i + 1 for i in np.flatnonzero(step <= tolerance * scale).tolist()]
-    if not dropped:
-        return curve, []
-    keep = np.setdiff1d(np.arange(len(x)), dropped)
-    new_index = np.searchsorted(keep, np.arange(len(x)), side="right") - 1
-    points = tuple(dataclasses.replace(p, index=int(new_index[p.index]))
-                   for p in curve.special_points)
-    return dataclasses.replace(curve, x=curve.x[keep], s=curve.s[keep],
-                               tangents=curve.tangents[keep], ds=curve.ds[keep],
-                               newton_iterations=curve.newton_iterations[keep],
-                               residuals=curve.residuals[keep], special_points=points), dropped

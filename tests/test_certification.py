@@ -89,6 +89,23 @@ def test_rs_no_roll_leaving_the_seed_nearly_along_delta_0_is_proven(k):
     assert seed and all(abs(p.centre[1]) <= p.radius and p.distance <= 1e-9 for p in seed)
 
 
+@pytest.mark.parametrize("k", [270046.2352420682, 1e6])
+def test_the_limit_curve_bending_below_its_step_is_proven_with_points_inserted(k):
+    # at large k the limit curve bends on a scale (beta_L ~ 1/k) far below its steps: on one
+    # segment no tube is proven (not even on 1/1024 of it) around the cubic through its ends;
+    # a point of the arc inserted on its middle slice halves the cubic's error
+    curves = trace_boundaries(k, certify=True).curves
+    cert = curves["dr_limit"].certificate
+    assert cert.proven and cert.inserted_points >= 1, cert.message
+    assert curves["rs_limit"].certificate.proven
+    engine = curves["dr_limit"].engine[0]
+    first = int(min(curves[n].engine_rows[0] for n in ("dr_limit", "rs_limit")))
+    reported = {(p.index, p.event) for p in engine.special_points
+                if p.kind in (SpecialKind.EVENT, SpecialKind.FOLD)}
+    proven = {(p.index + first, p.event) for p in cert.special_points if p.reported}
+    assert proven == reported  # in the engine's rows: not shifted by the inserted points
+
+
 def test_what_is_not_covered_is_stated(certified):
     for _name, curve in certified.curves.items():
         excluded = curve.certificate.excluded

@@ -189,6 +189,67 @@ def _rows(curve, rows, drop_kinds=()):
                                residuals=curve.residuals[rows], special_points=points)
 
 
+def _coarse(curve, every):
+    """Every ``every``-th point of the curve, with those of its special points and its end."""
+    keep = {p.index for p in curve.special_points} | {len(curve) - 1}
+    return _rows(curve, sorted(set(range(0, len(curve), every)) | keep))
+
+
+def test_a_segment_without_a_tube_is_halved_by_points_of_the_arc(cubic_curve):
+    # without cuts of a tube (max_depth = 0) segments of every third point have none; points
+    # of the arc inserted on their middle slices give them one; the certificate names the
+    # caller's points
+    coarse = _coarse(cubic_curve, 3)
+    unrefined = certify(coarse, cubic(), [STOP, MARK], options=CertifyOptions(max_depth=0,
+                                                                              refine=0))
+    assert not unrefined.proven and unrefined.check is Check.TUBE
+    assert f"segment {unrefined.segment} (points " in unrefined.message
+    cert = certify(coarse, cubic(), [STOP, MARK], options=CertifyOptions(max_depth=0))
+    assert cert.proven and cert.inserted_points > 0, cert.message
+    assert f"{cert.inserted_points} point(s) of the arc inserted" in cert.message
+    assert cert.segments == len(coarse) - 1 + cert.inserted_points
+    assert f"proven: {len(coarse) - 1} segments" in cert.message
+    reference = certify(coarse, cubic(), [STOP, MARK])  # cut tubes, nothing inserted
+    assert reference.proven and reference.inserted_points == 0
+    assert sorted((p.kind.value, p.index) for p in cert.special_points) == \
+        sorted((p.kind.value, p.index) for p in reference.special_points)
+    for p in cert.special_points:  # at the points the curve reports
+        assert any(q.index == p.index for q in coarse.special_points)
+
+
+def test_a_wrong_curve_stays_wrong_with_points_inserted(cubic_curve):
+    coarse = _coarse(cubic_curve, 3)
+    options = CertifyOptions(max_depth=0)
+    moved = _rows(coarse, range(len(coarse)))
+    moved.x[20, 1] += 1e-6
+    cert = certify(moved, cubic(), [STOP, MARK], options=options)
+    assert not cert.proven and cert.check is Check.POINT and cert.point == 20, cert.message
+    fold = coarse.special("fold")[0].index
+    rows = [i for i in range(len(coarse)) if abs(i - fold) > 1]
+    cert = certify(_rows(coarse, rows), cubic(), [STOP, MARK], options=options)
+    assert not cert.proven and cert.check in (Check.FOLD, Check.TUBE), cert.message
+    assert cert.segment == fold - 2, cert.message
+
+
+def test_points_are_named_as_the_caller_numbers_them_after_a_merge():
+    # the circle crosses y = 0 at (-1, 0), its fold in x: two special points located at one
+    # place, a point repeated; indices after it count the caller's points all the same
+    event = Event("y", lambda x, numbers=FLOATS: x[1], 1)
+    curve = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)),
+                  events=[event])
+    cert = certify(curve, circles(), [event])
+    assert cert.proven and "merged with the point before" in cert.message, cert.message
+    merged = int(cert.message.split("(points ")[1].split(" merged")[0])
+    assert merged < 30
+    assert {p.index for p in cert.special_points if p.reported} == \
+        {p.index for p in curve.special_points
+         if p.kind in (SpecialKind.FOLD, SpecialKind.EVENT)} - {merged} | {merged - 1}
+    wrong = _rows(curve, range(len(curve)))
+    wrong.x[30, 0] += 1e-6
+    cert = certify(wrong, circles(), [event])
+    assert not cert.proven and cert.point == 30 and "point 30 " in cert.message, cert.message
+
+
 def test_a_point_moved_off_the_curve_is_rejected_there(cubic_curve):
     wrong = _rows(cubic_curve, range(len(cubic_curve)))
     wrong.x[20, 1] += 1e-6
