@@ -39,7 +39,7 @@ import numpy as np
 from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import FLOATS, balls
-from .refine import Points
+from .refine import Points, seam_once
 from .result import Curve, SpecialKind, Status
 from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
 
@@ -228,11 +228,15 @@ class _Run:
                                 self.options.leaf_depth, centred_slope=next_to_zero)
         return cache[s]
 
-    def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
-        """Prove the zero of ``phi`` at point ``i``: the only one in the monotone stretch
-        through the point (the last run of the segment before, the first of the one after),
-        within ``special_tolerance (1 + |x_i|)`` of the point if reported there, within the
-        points' accuracy ``node_tolerance (1 + |x_i|)`` if it is an unreported zero at an end."""
+    def _stretch(self, function: Function, i: int, cache: dict):
+        """The monotone runs through point ``i``, ``[(segment, run)]``, or a failure.
+
+        The last run of the segment before and the first of the one after must be monotone
+        in one direction and overlap: the first must hold the node of point ``i`` (the arc's
+        point on the slice where the second starts). If the point is off the curve and the
+        two frames' slices through it differ, the arc between the slices could hide zeros
+        otherwise.
+        """
         m = len(self.x) - 1
         stretch = []
         if i > 0:
@@ -242,13 +246,27 @@ class _Run:
         if i < m:
             after = self._leaves(function, i, cache, next_to_zero=True)
             stretch.append((i, run_at(after, 0.0) if after else None))
-        signs = {run.sign for _, run in stretch if run is not None and not run.excluded}
-        if any(run is None or run.excluded for _, run in stretch) or len(signs) != 1:
+        runs_ = [run for _, run in stretch if run is not None and not run.excluded]
+        if len(runs_) != len(stretch) or len({run.sign for run in runs_}) != 1:
             return self._fail(function, f"the zero at {self.points.point(i)} is not proven to "
-                              "be the only one "
-                              "next to it (no monotone stretch through it)",
+                              "be the only one next to it (no monotone stretch through it)",
                               segment=stretch[0][0], point=i)
-        direction = signs.pop()
+        if len(runs_) == 2 and not self.inside(self.nodes[i].box, i - 1, runs_[0].lo,
+                                               runs_[0].hi):
+            return self._fail(function, f"the runs through {self.points.point(i)} on both sides "
+                              "are not proven to overlap", segment=i - 1, point=i)
+        return [(s, run) for (s, _), run in zip(stretch, runs_, strict=True)]
+
+    def _zero_at(self, function: Function, i: int, reported: bool, cache: dict):
+        """Prove the zero of ``phi`` at point ``i``: the only one in the monotone stretch
+        through the point (:meth:`_stretch`), within ``special_tolerance (1 + |x_i|)`` of the
+        point if reported there, within the
+        points' accuracy ``node_tolerance (1 + |x_i|)`` if it is an unreported zero at an end."""
+        m = len(self.x) - 1
+        stretch = self._stretch(function, i, cache)
+        if isinstance(stretch, _Failure):
+            return stretch
+        direction = stretch[0][1].sign
         if reported and function.direction and direction != function.direction:
             return self._fail(function, f"its zero at {self.points.point(i)} is reported but "
                               "crosses the "
@@ -269,8 +287,7 @@ class _Run:
         if not any(self.inside(balls_, s, run.lo, run.hi) for s, run in stretch
                    if run is not None):
             return self._fail(function, f"the box of its zero at {self.points.point(i)} is not "
-                              "in the tubes "
-                              "of the stretch through it", point=i)
+                              "in the tubes of the stretch through it", point=i)
         distance = float(np.max(np.abs(self.x[i] - np.array(centre)))) + radius
         # the box is centred at a Newton step of any length from the point: a reported zero
         # must be within special_tolerance of it, an unreported one at an end of the curve
@@ -525,7 +542,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             failure = run.zeros(function)
             if failure is not None:
                 break
-    proven = _seam(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
+    proven = seam_once(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
     # in the caller's indices (a zero is proven only at a point of the caller's curve: at an
     # inserted point it would be an unreported zero inside the curve, a failure)
     proven = [dataclasses.replace(p, index=points.origin[p.index]) for p in proven]
@@ -549,29 +566,6 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
                        f"tube pieces, radius <= {radius:.2g}), points within "
                        f"{run.node_distance:.2g} of the curve, {len(proven)} zero(s) of folds "
                        f"and events proven{note}", **common)
-
-
-def _seam(curve: Curve, proven: list) -> list:
-    """The zeros of a closed curve without the second copy of each one at its seam.
-
-    A closed curve's last point is its first, so a zero there is proven at both ends; the one
-    the run does not report (an end's zero, ``reported = False``) is dropped when the other
-    end's box, for the same function, overlaps it (if neither is reported, the last one).
-    """
-    m = len(curve.x) - 1
-
-    def same(p: ProvenPoint, q: ProvenPoint) -> bool:
-        return (p.kind, p.coordinate, p.event) == (q.kind, q.coordinate, q.event) and \
-            float(np.max(np.abs(p.centre - q.centre))) <= p.radius + q.radius
-
-    def copy(p: ProvenPoint) -> bool:
-        # an unreported zero at an end, the same as a kept one at the other end: reported, or
-        # the first point's if neither is
-        return not p.reported and p.index in (0, m) and any(
-            q.index == m - p.index and (q.reported or q.index == 0) and same(p, q)
-            for q in proven)
-
-    return [p for p in proven if not copy(p)]
 
 
 #: points this close (relative to 1 + |x|) repeat the point before: a special point located twice

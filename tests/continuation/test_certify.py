@@ -250,6 +250,41 @@ def test_points_are_named_as_the_caller_numbers_them_after_a_merge():
     assert not cert.proven and cert.point == 30 and "point 30 " in cert.message, cert.message
 
 
+def test_three_zeros_between_the_slices_of_a_point_are_not_proven_as_one():
+    """The line y = x through five points, the middle one 6e-10 off it (within the points'
+    accuracy); its tangents make the segment before it a graph over x and the one after it a
+    graph over y, so their slices through it cut the line at u = -6e-10 and +6e-10
+    (u = (x + y) / sqrt 2). The event v^3 - a^2 v (v = u - u_0) has three zeros there, one
+    reported at the point: the stretch through it must hold the zero's box in the runs of
+    both segments (the box of the zero at 6e-12 lay in the second only, and the two zeros
+    between the slices were missed). From an adversarial review."""
+    line = Problem(lambda x, m=FLOATS: [x[1] - x[0]], lambda x, m=FLOATS: [[-1.0, 1.0]])
+    off, a = 6e-10, 3e-10
+    centre = -0.98 * a  # zeros at u = -1.98 a, -0.98 a and 0.02 a
+
+    def cubic_in_u(x, numbers=FLOATS):
+        v = (x[0] + x[1]) / math.sqrt(2.0) - centre
+        return v * v * v - a * a * v
+
+    event = Event("v^3 - a^2 v", cubic_in_u)
+    length = 1e-5
+    x = np.array([[u / math.sqrt(2.0)] * 2 for u in (-2 * length, -length, 0.0, length,
+                                                    2 * length)])
+    x[2] = [-off / math.sqrt(2.0), off / math.sqrt(2.0)]
+    angles = np.radians([45.0, 40.0, 45.0 + math.degrees(1e-4), 50.0, 45.0])
+    t = np.column_stack([np.cos(angles), np.sin(angles)])
+    template = trace(line, [0.0, 0.0], direction=[1.0, 1.0], options=Options(max_arclength=1e-3))
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    reported = dataclasses.replace(template.special_points[0], kind=SpecialKind.EVENT,
+                                   name="v^3 - a^2 v", index=2, x=x[2].copy(), s=float(s[2]),
+                                   tangent=t[2].copy(), event=0)
+    curve = dataclasses.replace(template, x=x, s=s, tangents=t, ds=np.diff(s, prepend=0.0),
+                                newton_iterations=np.zeros(5, int), residuals=np.zeros(5),
+                                special_points=(reported,))
+    cert = certify(curve, line, [event], fold_coordinates=())
+    assert not cert.proven and cert.check is Check.EVENT and cert.point == 2, cert.message
+
+
 def test_a_point_moved_off_the_curve_is_rejected_there(cubic_curve):
     wrong = _rows(cubic_curve, range(len(cubic_curve)))
     wrong.x[20, 1] += 1e-6
@@ -399,3 +434,24 @@ def test_jets_give_derivatives_in_floats_and_balls():
             assert y.d == pytest.approx(d, rel=1e-8) and y.dd == pytest.approx(dd, rel=1e-3)
     ball = jets(B).sinc(Jet(B.arb(0, 1e-3), B.number(1.0), B.number(0.0)))
     assert ball.v.contains(1.0) and ball.d.contains(0.0) and ball.dd.contains(-1.0 / 3.0)
+
+
+def test_a_zero_at_the_seam_is_dropped_only_if_one_box_holds_the_other():
+    from continuation.certificate import ProvenPoint
+    from continuation.refine import seam_once
+
+    curve = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
+    m = len(curve) - 1
+
+    def zero(index, centre, radius, reported):
+        return ProvenPoint(SpecialKind.FOLD, index, np.array(centre), radius, 0.0,
+                           coordinate=0, reported=reported)
+
+    inside = [zero(0, [1.0, 1e-7], 1e-8, False), zero(m, [1.0, 0.0], 1e-6, True)]
+    assert seam_once(curve, inside) == inside[1:]
+    # overlapping boxes may each hold a zero of their own: both are listed
+    overlapping = [zero(0, [1.0, 1.5e-6], 1e-6, False), zero(m, [1.0, 0.0], 1e-6, True)]
+    assert seam_once(curve, overlapping) == overlapping
+    other = [zero(0, [1.0, 0.0], 1e-8, False), dataclasses.replace(
+        zero(m, [1.0, 0.0], 1e-6, True), coordinate=1)]
+    assert seam_once(curve, other) == other
