@@ -296,6 +296,11 @@ class Jet:
         return f"Jet({self.v!r}, {self.d!r}, {self.dd!r})"
 
 
+def _largest(values) -> float:
+    """The largest of the floats (0 if none), NaN if one is (``max`` would drop it)."""
+    return math.nan if any(math.isnan(v) for v in values) else max(values, default=0.0)
+
+
 def _chain(a, f0, f1, f2):
     """``f(a)`` for a jet ``a`` from ``f``, ``f'`` and ``f''`` at its value (``f2`` may be None)."""
     if type(a) is not Jet:
@@ -361,10 +366,10 @@ class _Jets:
         if not base.rigorous:
             return error0
         intervals = tuple(base.bounds(v) for v in values)
-        speed = max(base.bounds(abs(a.d))[1] if type(a) is Jet else 0.0 for a in args)
+        speed = _largest([base.bounds(abs(a.d))[1] for a in args if type(a) is Jet])
         second_order = any(type(a) is Jet and a.dd is not None for a in args)
-        curving = max(base.bounds(abs(a.dd))[1] if type(a) is Jet and a.dd is not None
-                      else 0.0 for a in args)
+        curving = _largest([base.bounds(abs(a.dd))[1] for a in args
+                            if type(a) is Jet and a.dd is not None])
         best1 = 0.0 if speed == 0.0 else math.inf
         best2 = 0.0 if speed == 0.0 and curving == 0.0 else math.inf
         for widen in (1e-3, 1e-2, 3e-2, 0.1) if not math.isfinite(best2) else ():

@@ -76,3 +76,11 @@ def test_the_remainder_of_a_quadrature_encloses_its_derivatives_along_a_curved_p
     else:
         second = -eps * math.sin(s) * speed ** 2 + eps * math.cos(s) * (dd[0] + dd[1])
         assert error.dd.contains(second)
+
+
+def test_a_nan_derivative_makes_the_remainder_nan():
+    pytest.importorskip("flint")
+    B = balls()
+    args = (B.number(0.4), Jet(B.number(0.7), B.arb("nan")))
+    error = jets(B).analytic_error(lambda intervals, w: 1e-9 * math.cosh(2.0 * w), args)
+    assert not B.is_finite(error.d)
