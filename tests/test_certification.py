@@ -243,3 +243,13 @@ def test_groove_trace_certify_without_python_flint_is_a_usage_error(tmp_path, ca
     assert exit_.value.code == 2
     assert "groove-continuation[certify]" in capsys.readouterr().err
     assert not list(tmp_path.iterdir())
+
+
+def test_groove_trace_certify_says_when_points_were_inserted(tmp_path, capsys):
+    from groove_model.cli import main
+
+    assert main(["trace", "-k", "1e6", "--out", str(tmp_path), "--no-figure",
+                 "--certify"]) == 0
+    out = capsys.readouterr().out
+    line = next(x for x in out.splitlines() if x.startswith("  dr_limit: proven: "))
+    assert "more than traced: points of the arc inserted" in line

@@ -170,7 +170,11 @@ def certificate_line(certificate) -> str:
         return certificate.message
     excluded = "; ".join(f"not covered: {e.note}" if e.radius > 0 else f"excluded: {e.note}"
                          for e in certificate.excluded)
-    return (f"proven: {certificate.segments} segments in tubes of radius <= "
+    inserted = certificate.inserted_points
+    segments = f"{certificate.segments} segments" + (
+        f" ({inserted} more than traced: points of the arc inserted where no tube was proven)"
+        if inserted else "")
+    return (f"proven: {segments} in tubes of radius <= "
             f"{certificate.max_radius:.1e}, points within {certificate.node_distance:.0e}, "
             f"{len(certificate.special_points)} special point(s) in boxes of radius <= "
             f"{max((p.radius for p in certificate.special_points), default=0.0):.0e}"
