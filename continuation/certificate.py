@@ -92,7 +92,8 @@ class ProvenPoint:
     kind : SpecialKind
         ``FOLD`` or ``EVENT``.
     index : int
-        The point of the curve it belongs to.
+        The point of the curve it belongs to (for a zero at a point the certificate inserted,
+        which only a zero crossing against its event's direction can be, the point before).
     centre : ndarray
         Centre of the box ``|x - centre|_inf <= radius`` holding exactly one solution of the
         augmented system.

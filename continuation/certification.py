@@ -228,6 +228,15 @@ class _Run:
                                 self.options.leaf_depth, centred_slope=next_to_zero)
         return cache[s]
 
+    def _reach(self, s: int) -> float:
+        """Where segment ``s``'s count of zeros ends: at the node of point ``s + 1`` (its
+        ``tau`` in the segment's frame, upper bound). That node is the arc's point on the
+        slice where segment ``s + 1`` starts, at ``tau = L`` only if the two frames' slices
+        through the point agree; a point off the curve with frames in different coordinates
+        puts it beyond or before ``L``, and the arc between must be counted by one of them."""
+        tau, _ = self.segments[s].frame.coordinates(self.nodes[s + 1].box, self.B)
+        return _upper(tau)
+
     def _stretch(self, function: Function, i: int, cache: dict):
         """The monotone runs through point ``i``, ``[(segment, run)]``, or a failure.
 
@@ -413,7 +422,7 @@ class _Run:
                 continue
             leaves = self._leaves(function, s, cache)
             crossings = None if leaves is None else count_zeros(
-                leaves, signs[s], signs[s + 1], self.segments[s].frame.length)
+                leaves, signs[s], signs[s + 1], self._reach(s))
             if crossings is None:
                 return self._fail(function, f"its zeros on {self.points.segment(s)} are not "
                                   "decided",
@@ -543,9 +552,9 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             if failure is not None:
                 break
     proven = seam_once(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
-    # in the caller's indices (a zero is proven only at a point of the caller's curve: at an
-    # inserted point it would be an unreported zero inside the curve, a failure)
-    proven = [dataclasses.replace(p, index=points.origin[p.index]) for p in proven]
+    # in the caller's indices (a zero at an inserted point, unreported, crossing against its
+    # event's direction: the caller's point before it)
+    proven = [dataclasses.replace(p, index=points.segment_of(p.index)) for p in proven]
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
     common: dict[str, Any] = dict(
@@ -558,8 +567,11 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
         note += f" ({points.inserted} point(s) of the arc inserted where a segment's tube " \
             "was not proven)"
     if failure is not None:
-        segment = None if failure.segment is None else points.segment_of(failure.segment)
         point = None if failure.point is None else points.origin[failure.point]
+        at = failure.segment
+        if at is None and failure.point is not None and point is None:
+            at = failure.point  # at an inserted point: the segment it was inserted in
+        segment = None if at is None else points.segment_of(at)
         return Certificate(False, f"not proven: {failure.check}: {failure.message}{note}",
                            failure.check, segment, point, **common)
     return Certificate(True, f"proven: {len(curve.x) - 1 - len(merged)} segments ({pieces} "
