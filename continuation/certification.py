@@ -52,6 +52,7 @@ class _Failure:
     message: str
     segment: int | None = None
     point: int | None = None
+    caller: bool = False  # segment and point in the caller's indices already
 
 
 @dataclass
@@ -141,6 +142,22 @@ class _Run:
                             f"{self.options.node_tolerance * scale:.3g}", point=i)
         self.node_distance = max(self.node_distance, distance)
         return node
+
+    def merged_points(self, x, dropped) -> _Failure | None:
+        """Each point merged with the point kept before it (the caller's ``x[r]`` for ``r`` in
+        ``dropped``) within the points' accuracy of that point's node, or the first failure."""
+        for r in dropped:
+            j = max(i for i, o in enumerate(self.points.origin) if o is not None and o < r)
+            scale = 1.0 + float(np.max(np.abs(x[r])))
+            distance = max(_upper(b - float(v)) for b, v in zip(self.nodes[j].box, x[r],
+                                                                 strict=True))
+            if not distance <= self.options.node_tolerance * scale:
+                return _Failure(Check.POINT, f"point {r}, merged with point "
+                                f"{self.points.origin[j]}, is {distance:.3g} from the curve, "
+                                f"more than {self.options.node_tolerance * scale:.3g}",
+                                point=r, caller=True)
+            self.node_distance = max(self.node_distance, distance)
+        return None
 
     def node_jacobian(self, i: int):
         """``H'`` over the box of point ``i``'s zero (computed once, when needed)."""
@@ -545,7 +562,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
         failure = _Failure(Check.INPUT, "all its points are one point (to rounding)")
     run = _Run(points, problem, events, B, options)
     if failure is None:
-        failure = run.arcs()
+        failure = run.arcs() or run.merged_points(np.asarray(curve.x, float), merged)
     if failure is None:
         for function in _functions(points.curve, events, fold_coordinates):
             failure = run.zeros(function)
@@ -567,11 +584,12 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
         note += f" ({points.inserted} point(s) of the arc inserted where a segment's tube " \
             "was not proven)"
     if failure is not None:
-        point = None if failure.point is None else points.origin[failure.point]
+        point = failure.point if failure.caller or failure.point is None else \
+            points.origin[failure.point]
         at = failure.segment
         if at is None and failure.point is not None and point is None:
             at = failure.point  # at an inserted point: the segment it was inserted in
-        segment = None if at is None else points.segment_of(at)
+        segment = at if failure.caller or at is None else points.segment_of(at)
         return Certificate(False, f"not proven: {failure.check}: {failure.message}{note}",
                            failure.check, segment, point, **common)
     return Certificate(True, f"proven: {len(curve.x) - 1 - len(merged)} segments ({pieces} "

@@ -28,20 +28,22 @@ __all__ = ["Points", "merge_duplicates", "seam_once"]
 
 
 def merge_duplicates(curve: Curve, tolerance: float) -> tuple[Curve, list]:
-    """The curve without points that repeat the point before (special points located twice
-    at one place) and the kept rows; their special points move to the kept point.
+    """The curve without points that repeat the last point kept (special points located
+    twice at one place) and the kept rows; their special points move to the kept point.
 
-    Returns the curve and the indices of the kept rows in the given curve.
+    A point is dropped if it is within ``tolerance (1 + |x|)`` of the last point kept (not of
+    the point before it: a chain of such steps may drift). Returns the curve and the indices
+    of the kept rows in the given curve.
     """
     x = np.asarray(curve.x, float)
-    if len(x) < 2:
-        return curve, list(range(len(x)))
-    step = np.max(np.abs(np.diff(x, axis=0)), axis=1)
-    scale = 1.0 + np.max(np.abs(x[1:]), axis=1)
-    dropped = [i + 1 for i in np.flatnonzero(step <= tolerance * scale).tolist()]
-    if not dropped:
-        return curve, list(range(len(x)))
-    keep = np.setdiff1d(np.arange(len(x)), dropped)
+    kept = [0] if len(x) else []
+    for i in range(1, len(x)):
+        step = float(np.max(np.abs(x[i] - x[kept[-1]])))
+        if not step <= tolerance * (1.0 + float(np.max(np.abs(x[i])))):
+            kept.append(i)
+    if len(kept) == len(x):
+        return curve, kept
+    keep = np.array(kept)
     new_index = np.searchsorted(keep, np.arange(len(x)), side="right") - 1
     points = tuple(dataclasses.replace(p, index=int(new_index[p.index]))
                    for p in curve.special_points)

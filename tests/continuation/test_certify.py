@@ -314,6 +314,43 @@ def _line_with_a_point_off_it(report: bool):
                                special_points=(reported,) if report else ())
 
 
+def _line_through(x):
+    """A curve of the line y = x through the points ``x`` (rows), tangents along it."""
+    x = np.asarray(x, float)
+    t = np.tile([math.sqrt(0.5), math.sqrt(0.5)], (len(x), 1))
+    template = trace(LINE, [0.0, 0.0], direction=[1.0, 1.0], options=Options(max_arclength=1e-3))
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    return dataclasses.replace(template, x=x, s=s, tangents=t, ds=np.diff(s, prepend=0.0),
+                               newton_iterations=np.zeros(len(x), int),
+                               residuals=np.zeros(len(x)), special_points=())
+
+
+def test_a_point_merged_with_the_one_before_is_proven_on_the_curve_too():
+    # point 3 repeats point 2 to 9e-14 (merged), point 2 is 0.95e-12 above the line (within
+    # the points' accuracy, here 1e-12 (1 + |x|)), so point 3 is 1.04e-12 above it
+    options = CertifyOptions(node_tolerance=1e-12)
+    d = 0.95e-12
+    x = [[-2e-5, -2e-5], [-1e-5, -1e-5], [0.0, d], [0.0, d + 9e-14], [1e-5, 1e-5],
+         [2e-5, 2e-5]]
+    cert = certify(_line_through(x), LINE, fold_coordinates=(), options=options)
+    assert not cert.proven and cert.check is Check.POINT and cert.point == 3, cert.message
+    assert "point 3, merged with point 2" in cert.message
+    x[3][1] = d - 9e-14  # towards the line: within the accuracy, and counted in node_distance
+    x[2][1] = 0.8e-12
+    cert = certify(_line_through(x), LINE, fold_coordinates=(), options=options)
+    assert cert.proven and cert.node_distance >= 0.8e-12, cert.message
+
+
+def test_a_chain_of_near_repeats_is_not_merged_into_one_point():
+    # 20000 steps of 9e-14 off the line, each a repeat of the point before to rounding, drift
+    # 1.8e-9 from it: each is compared with the last point kept, not with the one before
+    steps = [[1e-5 - 9e-14 * j / math.sqrt(2.0), 1e-5 + 9e-14 * j / math.sqrt(2.0)]
+             for j in range(1, 20001)]
+    x = [[-2e-5, -2e-5], [-1e-5, -1e-5], [0.0, 0.0], [1e-5, 1e-5], *steps]
+    cert = certify(_line_through(x), LINE, fold_coordinates=())
+    assert not cert.proven, cert.message
+
+
 def _in_u(f):
     return lambda x, numbers=FLOATS: f((x[0] + x[1]) / math.sqrt(2.0))
 
