@@ -32,13 +32,14 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 
 from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
+from .certify_input import not_certifiable
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
-from .numbers import FLOATS, balls
+from .numbers import balls
 from .refine import Points, seam_once
 from .result import Curve, SpecialKind, Status
 from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
@@ -222,6 +223,14 @@ class _Run:
         last = self._node(m, self.segments[-1], self.segments[-1].frame.length)
         if isinstance(last, _Failure):
             return last
+        if self.curve.status is Status.CLOSED:
+            # the arc goes on from the last point's node to the first point's, in the last
+            # tube: counted up to there (the two nodes are on different slices)
+            if not self.inside(self.nodes[0].box, m - 1):
+                return _Failure(Check.CONNECTION, "the curve is reported closed, but the "
+                                "curve at point 0 does not lie in the last segment's tube",
+                                segment=m - 1, point=0)
+            last = self.nodes[0]
         self.nodes.append(last)
         return None
 
@@ -259,7 +268,8 @@ class _Run:
 
         The last run of the segment before and the first of the one after must be monotone
         in one direction and overlap: the first must hold the node of point ``i`` (the arc's
-        point on the slice where the second starts). If the point is off the curve and the
+        point on the slice where the second starts; for the last point of a closed curve, the
+        first point's node). If the point is off the curve and the
         two frames' slices through it differ, the arc between the slices could hide zeros
         otherwise.
         """
@@ -277,8 +287,7 @@ class _Run:
             return self._fail(function, f"the zero at {self.points.point(i)} is not proven to "
                               "be the only one next to it (no monotone stretch through it)",
                               segment=stretch[0][0], point=i)
-        if len(runs_) == 2 and not self.inside(self.nodes[i].box, i - 1, runs_[0].lo,
-                                               runs_[0].hi):
+        if i > 0 and not self.inside(self.nodes[i].box, i - 1, runs_[0].lo, runs_[0].hi):
             return self._fail(function, f"the runs through {self.points.point(i)} on both sides "
                               "are not proven to overlap", segment=i - 1, point=i)
         return [(s, run) for (s, _), run in zip(stretch, runs_, strict=True)]
@@ -469,53 +478,6 @@ def _functions(curve: Curve, events, fold_coordinates) -> list[Function]:
     return functions
 
 
-def _probe(name: str, function, x) -> None:
-    """Call ``function(x, FLOATS)`` once: a ``TypeError`` that says what to write if it fails."""
-    try:
-        function(x, FLOATS)
-    except TypeError as exc:
-        raise TypeError(f"{name} must take (x, numbers) and be written over the numbers "
-                        f"namespace (continuation.numbers) to be certified: {exc}") from None
-
-
-def _check(curve: Curve, problem, events, fold_coordinates) -> _Failure | None:
-    """Arguments that cannot be right raise; a curve that cannot be certified is a failure."""
-    if not isinstance(curve, Curve):
-        raise TypeError(f"curve must be a continuation.Curve, got {type(curve).__name__}")
-    if getattr(problem, "jacobian", None) is None or getattr(problem, "residual", None) is None:
-        raise ValueError("certify needs problem.residual(x, numbers) and "
-                         "problem.jacobian(x, numbers), written over a numbers namespace")
-    n1 = curve.x.shape[1] if curve.x.ndim == 2 else 0
-    for c in fold_coordinates:
-        if not (isinstance(c, (int, np.integer)) and 0 <= c < n1):
-            raise ValueError(f"fold coordinate {c!r} is outside [0, {n1 - 1}]")
-    # a fold's coordinate and an event's position are ints (SpecialPoint)
-    folds = {cast(int, p.coordinate) for p in curve.special_points
-             if p.kind is SpecialKind.FOLD}
-    if not folds <= set(fold_coordinates):
-        raise ValueError(f"the curve reports folds in coordinates {sorted(folds)}, but "
-                         f"fold_coordinates = {tuple(fold_coordinates)!r}: pass them all")
-    used = [cast(int, p.event) for p in curve.special_points if p.kind is SpecialKind.EVENT]
-    if used and max(used) >= len(events):
-        raise ValueError(f"the curve reports event {max(used)}, but certify was given "
-                         f"{len(events)} event(s): pass every event of the run, in its order")
-    if len(curve) < 2:
-        return _Failure(Check.INPUT, f"the curve has {len(curve)} point(s); at least two are "
-                        "needed")
-    x0 = [float(v) for v in curve.x[0]]
-    _probe("problem.residual", problem.residual, x0)
-    _probe("problem.jacobian", problem.jacobian, x0)
-    for event in events:
-        _probe(f"the function of event '{event.name}'", event.function, x0)
-    if not curve.ok:
-        return _Failure(Check.INPUT, f"the run failed ({curve.status.name}): {curve.message}")
-    for p in curve.special_points:
-        if p.kind is SpecialKind.BRANCH_POINT:
-            return _Failure(Check.INPUT, f"branch point at point {p.index}: the solution set is "
-                            "not one smooth arc there, which is not certified", point=p.index)
-    return None
-
-
 def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             options: CertifyOptions | None = None, numbers=None) -> Certificate:
     """Prove that a traced curve follows one smooth curve of zeros, with its folds and events.
@@ -556,7 +518,9 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     options = options or CertifyOptions()
     if fold_coordinates is None:
         fold_coordinates = curve.options.fold_coordinates if curve.options is not None else ()
-    failure = _check(curve, problem, events, fold_coordinates)
+    reason = not_certifiable(curve, problem, events, fold_coordinates)
+    failure = None if reason is None else _Failure(Check.INPUT, reason[0], point=reason[1],
+                                                   caller=True)
     points, merged = Points.of(curve, _DUPLICATE)
     if failure is None and len(points.curve) < 2:
         failure = _Failure(Check.INPUT, "all its points are one point (to rounding)")

@@ -526,6 +526,50 @@ def test_jets_give_derivatives_in_floats_and_balls():
     assert ball.v.contains(1.0) and ball.d.contains(0.0) and ball.dd.contains(-1.0 / 3.0)
 
 
+def test_the_arc_between_the_nodes_at_the_seam_of_a_closed_curve_is_counted(monkeypatch):
+    """A circle reported closed, its seam at 45 degrees 6e-7 off it (within a node tolerance
+    of 1e-6), tangents next to it tilted so that the first segment is a graph over y and the
+    last over x: the first point's node lies 6e-7 after the seam on the circle and the last
+    point's 6e-7 before it. An event with two zeros between them, and none elsewhere, was
+    counted by neither segment (adversarial review; exposed once the leaves' tubes may be
+    wider than their parent's, which this test allows: each is still its own proof)."""
+    import continuation.krawczyk
+    import continuation.zeros
+
+    def wider(problem, frame, B, lo, hi, radius, *rest):
+        return continuation.krawczyk.solve_piece(problem, frame, B, lo, hi, 4 * radius, *rest)
+
+    monkeypatch.setattr(continuation.zeros, "solve_piece", wider)
+    seam, off = math.pi / 4, 6e-7
+    theta = seam + np.array([0.0, *np.linspace(1e-3, 2 * math.pi - 1e-3, 101), 2 * math.pi])
+    x = np.column_stack([np.cos(theta), np.sin(theta)])
+    x[0] *= 1 + off
+    x[-1] = x[0]
+    tilt = theta + np.r_[0.0, -0.01, np.zeros(99), 0.01, 0.0]
+    t = np.column_stack([-np.sin(tilt), np.cos(tilt)])
+    template = trace(circles(), [1.0, 0.0])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    curve = dataclasses.replace(template, x=x, s=s, tangents=t, ds=np.diff(s, prepend=0.0),
+                                newton_iterations=np.zeros(len(x), int),
+                                residuals=np.zeros(len(x)), special_points=())
+    assert curve.status.name == "CLOSED"
+    # zeros at seam -+ 3.6e-7: u^2 - w^2 v in coordinates turned to the seam (u along the
+    # circle, v across it, v = 1 on it)
+    c, w = math.cos(seam), 3.6e-7
+
+    def event(p, numbers=FLOATS):
+        u, v = c * (p[1] - p[0]), c * (p[0] + p[1])
+        return u * u - w * w * v
+
+    cert = certify(curve, UNIT_CIRCLE, [Event("u^2 - w^2 v", event)], fold_coordinates=(),
+                   options=CertifyOptions(node_tolerance=1e-6))
+    assert not cert.proven and cert.check is Check.EVENT, cert.message
+
+
+UNIT_CIRCLE = Problem(lambda x, m=FLOATS: [x[0] * x[0] + x[1] * x[1] - 1.0],
+                      lambda x, m=FLOATS: [[2.0 * x[0], 2.0 * x[1]]])
+
+
 def test_a_zero_at_the_seam_is_dropped_only_if_one_box_holds_the_other():
     from continuation.certificate import ProvenPoint
     from continuation.refine import seam_once
