@@ -4,7 +4,9 @@ A formula written over a *numbers* namespace ``m`` is evaluated in floats for tr
 ball arithmetic for certification, from the same source, so the two cannot drift apart. It
 may use
 
-* ``+ - * /`` between numbers and Python floats, unary ``-`` and ``**`` with a small integer;
+* ``+ - * /`` between numbers and Python floats, unary ``-`` and ``**`` with a small integer
+  (prefer ``x * x``: over balls python-flint's power is a looser enclosure, and NaN for a ball
+  centred at 0, so a proof there fails);
 * comparisons (``a >= b``), which mean *certainly* (for a ball: for every value it holds);
   for a branch between two formulas that are both exact where both apply;
 * ``m.sin``, ``m.cos``, ``m.sqrt`` (NaN, or a non-finite ball, below zero), ``m.sinc``
