@@ -42,7 +42,17 @@ from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import balls
 from .refine import Points, seam_once
 from .result import Curve, SpecialKind, Status
-from .zeros import Function, Leaf, classify, count_zeros, float_value, prove_zero, run_at
+from .zeros import (
+    SAME,
+    Function,
+    Leaf,
+    classify,
+    count_zeros,
+    float_value,
+    functions_of,
+    prove_zero,
+    run_at,
+)
 
 __all__ = ["Certificate", "CertifyOptions", "Check", "Exclusion", "ProvenPoint", "certify"]
 
@@ -438,6 +448,7 @@ class _Run:
                 signs[i] = 0
         at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
+        first, same = len(self.proven), []
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
             if failure is not None:
@@ -453,6 +464,9 @@ class _Run:
                 return self._fail(function, f"its zeros on {self.points.segment(s)} are not "
                                   "decided",
                                   segment=s)
+            if crossings == [SAME]:
+                same.append(s)
+                continue
             for direction in crossings:
                 if not function.direction or direction == function.direction:
                     values = (float_value(function, self.problem, self.x[s]),
@@ -460,22 +474,37 @@ class _Run:
                     return self._fail(function, f"crosses zero on {self.points.segment(s)}, "
                                       f"from {values[0]:.3g} to {values[1]:.3g}, where no "
                                       "zero is reported", segment=s)
+        return self._one_zero(function, same, reported, first)
+
+    def _one_zero(self, function: Function, same: list, reported: set, first: int):
+        """Zeros proven at consecutive points with one monotone run between them (segments
+        ``same``) are one zero: listed once (the reported one, else the first), a failure if
+        more than one of them is reported."""
+        drop: set = set()
+        for group in _chains(same):
+            points = range(group[0], group[-1] + 2)
+            claimed = [i for i in points if i in reported]
+            if len(claimed) > 1:
+                names = [self.points.point(i) for i in claimed[:2]]
+                return self._fail(function, f"the zeros reported at {names[0]} and {names[1]} "
+                                  "are one zero (one "
+                                  "monotone run between them)", segment=group[0],
+                                  point=claimed[1])
+            keep = claimed[0] if claimed else points[0]
+            drop |= set(points) - {keep}
+        self.proven[first:] = [p for p in self.proven[first:] if p.index not in drop]
         return None
 
 
-def _functions(curve: Curve, events, fold_coordinates) -> list[Function]:
-    """Events reported at an end first, then the other events, then folds: the boxes proven
-    at the ends are consulted for the functions after them (:meth:`_Run._vanishes_at_end`)."""
-    names = curve.problem.names if curve.problem is not None and curve.problem.names else None
-    ends = {p.event for p in curve.special_points if p.kind is SpecialKind.EVENT
-            and p.index in (0, len(curve) - 1)}
-    functions = [Function(f"event '{event.name}'", event=event, position=j,
-                          direction=event.direction) for j, event in enumerate(events)]
-    functions.sort(key=lambda f: f.position not in ends)
-    for c in fold_coordinates:
-        label = names[c] if names and c < len(names) else f"x[{c}]"
-        functions.append(Function(f"fold in {label}", coordinate=c))
-    return functions
+def _chains(indices: list) -> list:
+    """Runs of consecutive integers in the increasing list ``indices``."""
+    out: list = []
+    for i in indices:
+        if out and out[-1][-1] == i - 1:
+            out[-1].append(i)
+        else:
+            out.append([i])
+    return out
 
 
 def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
@@ -528,14 +557,16 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     if failure is None:
         failure = run.arcs() or run.merged_points(np.asarray(curve.x, float), merged)
     if failure is None:
-        for function in _functions(points.curve, events, fold_coordinates):
+        for function in functions_of(points.curve, events, fold_coordinates):
             failure = run.zeros(function)
             if failure is not None:
                 break
     proven = seam_once(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
     # in the caller's indices (a zero at an inserted point, unreported, crossing against its
     # event's direction: the caller's point before it)
-    proven = [dataclasses.replace(p, index=points.segment_of(p.index)) for p in proven]
+    proven = [dataclasses.replace(p, index=points.segment_of(p.index)
+                                  if points.origin[p.index] is None else points.origin[p.index])
+              for p in proven]
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
     common: dict[str, Any] = dict(

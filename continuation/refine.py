@@ -76,11 +76,13 @@ def _on_slice(problem, frame: Frame, tau: float, iterations: int = 40):
 
 @dataclass
 class Points:
-    """The working curve, with the caller's index of each point (``None`` if inserted) and the
-    number of halvings of each segment by inserted points."""
+    """The working curve, with the caller's index of each point (``None`` if inserted), the
+    last of the caller's points merged into it (``None`` if inserted), and the number of
+    halvings of each segment by inserted points."""
 
     curve: Curve
     origin: list
+    last: list
     level: list
 
     @classmethod
@@ -88,7 +90,8 @@ class Points:
         """The caller's curve with repeated points merged; and the merged rows."""
         merged, keep = merge_duplicates(curve, tolerance)
         dropped = sorted(set(range(len(curve.x))) - set(keep))
-        return cls(merged, list(keep), [0] * max(len(keep) - 1, 0)), dropped
+        last = [b - 1 for b in keep[1:]] + ([len(curve.x) - 1] if keep else [])
+        return cls(merged, list(keep), last, [0] * max(len(keep) - 1, 0)), dropped
 
     @property
     def inserted(self) -> int:
@@ -121,6 +124,7 @@ class Points:
             special_points=tuple(dataclasses.replace(p, index=p.index + 1)
                                  if p.index > s else p for p in c.special_points))
         self.origin.insert(s + 1, None)
+        self.last.insert(s + 1, None)
         level = self.level[s] + 1
         self.level[s:s + 1] = [level, level]
         return True
@@ -128,8 +132,9 @@ class Points:
     # -- the caller's indices -------------------------------------------------------------
 
     def segment_of(self, s: int) -> int:
-        """The caller's segment holding segment ``s`` (or point ``s``)."""
-        return next(o for o in reversed(self.origin[:s + 1]) if o is not None)
+        """The caller's segment holding segment ``s`` (or point ``s``): it starts at the last of
+        the caller's points merged into the point before."""
+        return next(o for o in reversed(self.last[:s + 1]) if o is not None)
 
     def point(self, i: int) -> str:
         o = self.origin[i]
@@ -138,7 +143,7 @@ class Points:
 
     def segment(self, s: int) -> str:
         """``segment S (points a to b)``, or of a part of a caller's segment."""
-        a, b = self.origin[s], self.origin[s + 1]
+        a, b = self.last[s], self.origin[s + 1]
         if a is not None and b is not None:
             return f"segment {a} (points {a} to {b})"
         return f"segment {self.segment_of(s)} (a part between points inserted in it)"

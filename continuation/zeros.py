@@ -23,8 +23,10 @@ from dataclasses import dataclass
 
 from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, square_box
 from .numbers import FLOATS, Jet, jets
+from .result import SpecialKind
 
-__all__ = ["Function", "Leaf", "classify", "count_zeros", "prove_zero", "run_at", "runs"]
+__all__ = ["SAME", "Function", "Leaf", "classify", "count_zeros", "functions_of", "prove_zero",
+           "run_at", "runs"]
 
 
 @dataclass(frozen=True)
@@ -212,6 +214,10 @@ def run_at(leaves, tau: float):
     return next((run for run in runs(leaves) if run.lo <= tau <= run.hi), None)
 
 
+#: :func:`count_zeros`: the zeros at both ends of the segment are one and the same
+SAME = 0
+
+
 def count_zeros(leaves, left: int, right: int, length: float):
     """Zeros of ``phi`` on a segment between its end points (``tau = 0`` and ``length``), whose
     signs are ``left`` and ``right``; 0 for an end where ``phi`` vanishes (a zero proven there,
@@ -220,15 +226,16 @@ def count_zeros(leaves, left: int, right: int, length: float):
 
     Returns a list of crossing directions (``+1`` increasing along the curve), or ``None``
     when the count is open (a turning point between two monotone runs, or a run
-    inconsistent with the signs).
+    inconsistent with the signs); ``[SAME]`` when the zeros proven at both ends are one
+    (one monotone run between them).
     """
     stretch = [run for run in runs(leaves) if run.hi > 0.0 and run.lo < length]
     if not stretch:
         return None
     if left == 0 and right == 0 and len(stretch) == 1:
         # one monotone run with a zero proven at both ends: one zero (a monotone function
-        # vanishes once), e.g. a crossing located a rounding after the start
-        return [] if not stretch[0].excluded else None
+        # vanishes once), e.g. a crossing located a rounding after the start: SAME
+        return [SAME] if not stretch[0].excluded else None
     if left == 0:
         if stretch[0].excluded:
             return None
@@ -276,3 +283,18 @@ def float_value(function, problem, x) -> float:
     J = [[float(v) for v in row] for row in problem.jacobian(x)]
     d = determinant([row[:function.coordinate] + row[function.coordinate + 1:] for row in J])
     return d if function.coordinate % 2 == 0 else -d
+
+
+def functions_of(curve, events, fold_coordinates) -> list[Function]:
+    """Events reported at an end first, then the other events, then folds: the boxes proven
+    at the ends are consulted for the functions after them (``continuation.certification``)."""
+    names = curve.problem.names if curve.problem is not None and curve.problem.names else None
+    ends = {p.event for p in curve.special_points if p.kind is SpecialKind.EVENT
+            and p.index in (0, len(curve) - 1)}
+    functions = [Function(f"event '{event.name}'", event=event, position=j,
+                          direction=event.direction) for j, event in enumerate(events)]
+    functions.sort(key=lambda f: f.position not in ends)
+    for c in fold_coordinates:
+        label = names[c] if names and c < len(names) else f"x[{c}]"
+        functions.append(Function(f"fold in {label}", coordinate=c))
+    return functions

@@ -341,6 +341,47 @@ def test_a_point_merged_with_the_one_before_is_proven_on_the_curve_too():
     assert cert.proven and cert.node_distance >= 0.8e-12, cert.message
 
 
+def _with_events(curve, rows, event=0):
+    """The curve with event ``event`` reported at ``rows``."""
+    template = trace(circles(), [1.0, 0.0], events=[Event("y", lambda x, numbers=FLOATS: x[1])])
+    found = next(p for p in template.special_points if p.kind is SpecialKind.EVENT)
+    return dataclasses.replace(curve, special_points=tuple(
+        dataclasses.replace(found, index=i, x=curve.x[i].copy(), event=event) for i in rows))
+
+
+MIDDLE = [-2e-5, -1e-5, -1e-9, 1e-9, 1e-5, 2e-5]
+START = [0.0, 1e-9, 1e-5, 2e-5]
+
+
+@pytest.mark.parametrize("u, rows, listed", [(MIDDLE, (2, 3), None), (MIDDLE, (3,), [(3, True)]),
+                                             (START, (1,), [(1, True)]),
+                                             (START, (), [(0, False)])])
+def test_one_zero_reported_at_two_points_is_not_two_zeros(u, rows, listed):
+    # x = 0 on the line y = x, points 1e-9 on both sides of it (or the first on it): one
+    # crossing; reported at two points it is a false claim; a zero at the start and one
+    # reported a rounding after it are that one zero, listed once. From an adversarial review.
+    line = _line_through([[v * math.sqrt(0.5)] * 2 for v in u])
+    event = Event("x = 0", lambda x, numbers=FLOATS: x[0], 1)
+    cert = certify(_with_events(line, rows), LINE, [event], fold_coordinates=())
+    if listed is None:
+        assert not cert.proven and cert.check is Check.EVENT, cert.message
+        assert "are one zero" in cert.message and cert.point == 3
+    else:
+        assert cert.proven, cert.message
+        assert [(p.index, p.reported) for p in cert.special_points] == listed
+
+
+def test_a_failure_after_merged_points_names_the_caller_segment():
+    # points 2 and 3 repeat each other (merged); a crossing at u = 5e-6 lies on segment 3
+    # (points 3 to 4), not on segment 2 (5e-14 long). From an adversarial review.
+    u = [-2e-5, -1e-5, 0.0, 5e-14, 1e-5, 2e-5]
+    line = _line_through([[v * math.sqrt(0.5)] * 2 for v in u])
+    event = Event("u = 5e-6", lambda x, numbers=FLOATS: x[0] - 5e-6 * math.sqrt(0.5))
+    cert = certify(line, LINE, [event], fold_coordinates=())
+    assert not cert.proven and cert.segment == 3, cert.message
+    assert "segment 3 (points 3 to 4)" in cert.message
+
+
 def test_a_chain_of_near_repeats_is_not_merged_into_one_point():
     # 20000 steps of 9e-14 off the line, each a repeat of the point before to rounding, drift
     # 1.8e-9 from it: each is compared with the last point kept, not with the one before
