@@ -20,6 +20,12 @@ ball arithmetic (every rounding outwards):
    curve (a start on an event's zero set, a symmetric start) is proven the same way and
    listed, not counted as a crossing.
 
+For a curve reported closed, its last point must be its first (within ``special_tolerance``)
+and the arc is proven to run on from the last point's node to the first point's. The zeros are
+those met along the curve from its first point to its last: a zero at the seam is listed once
+when the boxes proven at both ends nest, and a curve traced twice round meets (and lists) each
+zero twice.
+
 Anything else fails with the first segment or point where a test failed and why; a curve is
 never reported proven on evidence that is only numerical. Branch points (where the solution
 set is not one smooth arc) are not certified, and no neighbourhood of a singular end is cut
@@ -46,6 +52,7 @@ from .zeros import (
     SAME,
     Function,
     Leaf,
+    chains,
     classify,
     count_zeros,
     float_value,
@@ -157,15 +164,11 @@ class _Run:
     def merged_points(self, x, dropped) -> _Failure | None:
         """Each point merged with the point kept before it (the caller's ``x[r]`` for ``r`` in
         ``dropped``) within the points' accuracy of that point's node, or the first failure."""
-        for r in dropped:
-            j = max(i for i, o in enumerate(self.points.origin) if o is not None and o < r)
-            scale = 1.0 + float(np.max(np.abs(x[r])))
-            distance = max(_upper(b - float(v)) for b, v in zip(self.nodes[j].box, x[r],
-                                                                 strict=True))
-            if not distance <= self.options.node_tolerance * scale:
-                return _Failure(Check.POINT, f"point {r}, merged with point "
-                                f"{self.points.origin[j]}, is {distance:.3g} from the curve, "
-                                f"more than {self.options.node_tolerance * scale:.3g}",
+        for r, kept, distance in self.points.merged_distances(x, dropped, self.nodes, _upper):
+            limit = self.options.node_tolerance * (1.0 + float(np.max(np.abs(x[r]))))
+            if not distance <= limit:
+                return _Failure(Check.POINT, f"point {r}, merged with point {kept}, is "
+                                f"{distance:.3g} from the curve, more than {limit:.3g}",
                                 point=r, caller=True)
             self.node_distance = max(self.node_distance, distance)
         return None
@@ -234,8 +237,15 @@ class _Run:
         if isinstance(last, _Failure):
             return last
         if self.curve.status is Status.CLOSED:
-            # the arc goes on from the last point's node to the first point's, in the last
-            # tube: counted up to there (the two nodes are on different slices)
+            # the last point is the first, and the arc goes on from the last point's node to
+            # the first point's, in the last tube: counted up to there (the two nodes are on
+            # different slices)
+            gap = float(np.max(np.abs(self.x[m] - self.x[0])))
+            limit = self.options.special_tolerance * (1.0 + float(np.max(np.abs(self.x[0]))))
+            if not gap <= limit:
+                return _Failure(Check.CONNECTION, f"the curve is reported closed, but its last "
+                                f"point is {gap:.3g} from its first, more than {limit:.3g}",
+                                segment=m - 1, point=m)
             if not self.inside(self.nodes[0].box, m - 1):
                 return _Failure(Check.CONNECTION, "the curve is reported closed, but the "
                                 "curve at point 0 does not lie in the last segment's tube",
@@ -481,7 +491,7 @@ class _Run:
         ``same``) are one zero: listed once (the reported one, else the first), a failure if
         more than one of them is reported."""
         drop: set = set()
-        for group in _chains(same):
+        for group in chains(same):
             points = range(group[0], group[-1] + 2)
             claimed = [i for i in points if i in reported]
             if len(claimed) > 1:
@@ -494,17 +504,6 @@ class _Run:
             drop |= set(points) - {keep}
         self.proven[first:] = [p for p in self.proven[first:] if p.index not in drop]
         return None
-
-
-def _chains(indices: list) -> list:
-    """Runs of consecutive integers in the increasing list ``indices``."""
-    out: list = []
-    for i in indices:
-        if out and out[-1][-1] == i - 1:
-            out[-1].append(i)
-        else:
-            out.append([i])
-    return out
 
 
 def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,

@@ -129,6 +129,15 @@ class Points:
         self.level[s:s + 1] = [level, level]
         return True
 
+    def merged_distances(self, x, dropped, nodes, upper):
+        """``(r, k, d)`` for each merged point ``r`` of the caller's points ``x``: ``k`` the
+        caller's index of the point kept for it, ``d`` an upper bound (``upper`` of a ball) of
+        its distance from that point's node box (``nodes``, one per point here)."""
+        for r in dropped:
+            j = max(i for i, o in enumerate(self.origin) if o is not None and o < r)
+            yield r, self.origin[j], max(upper(b - float(v))
+                                         for b, v in zip(nodes[j].box, x[r], strict=True))
+
     # -- the caller's indices -------------------------------------------------------------
 
     def segment_of(self, s: int) -> int:

@@ -25,8 +25,8 @@ from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, sq
 from .numbers import FLOATS, Jet, jets
 from .result import SpecialKind
 
-__all__ = ["SAME", "Function", "Leaf", "classify", "count_zeros", "functions_of", "prove_zero",
-           "run_at", "runs"]
+__all__ = ["SAME", "Function", "Leaf", "chains", "classify", "count_zeros", "functions_of",
+           "prove_zero", "run_at", "runs"]
 
 
 @dataclass(frozen=True)
@@ -298,3 +298,15 @@ def functions_of(curve, events, fold_coordinates) -> list[Function]:
         label = names[c] if names and c < len(names) else f"x[{c}]"
         functions.append(Function(f"fold in {label}", coordinate=c))
     return functions
+
+
+def chains(indices: list) -> list:
+    """Runs of consecutive integers in the increasing list ``indices`` (segments whose zeros at
+    their ends are one, :data:`SAME`)."""
+    out: list = []
+    for i in indices:
+        if out and out[-1][-1] == i - 1:
+            out[-1].append(i)
+        else:
+            out.append([i])
+    return out

@@ -607,6 +607,24 @@ def test_the_arc_between_the_nodes_at_the_seam_of_a_closed_curve_is_counted(monk
     assert not cert.proven and cert.check is Check.EVENT, cert.message
 
 
+def test_a_curve_reported_closed_must_end_on_its_first_point():
+    # the circle from t = 0 to 2 pi + 0.01, reported closed: y = 0 is met at t = 0 and 2 pi,
+    # a point the curve passes, not where it ends (adversarial review: the end's zero was
+    # proven from a point past the seam, the seam zero counted twice)
+    t = np.linspace(0.0, 2 * math.pi + 0.01, 120)
+    x = np.column_stack([np.cos(t), np.sin(t)])
+    template = trace(circles(), [1.0, 0.0])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    curve = dataclasses.replace(template, x=x, s=s,
+                                tangents=np.column_stack([-np.sin(t), np.cos(t)]),
+                                ds=np.diff(s, prepend=0.0), newton_iterations=np.zeros(120, int),
+                                residuals=np.zeros(120), special_points=())
+    assert curve.status.name == "CLOSED"
+    cert = certify(curve, UNIT_CIRCLE, fold_coordinates=())
+    assert not cert.proven and cert.check is Check.CONNECTION, cert.message
+    assert "from its first" in cert.message
+
+
 UNIT_CIRCLE = Problem(lambda x, m=FLOATS: [x[0] * x[0] + x[1] * x[1] - 1.0],
                       lambda x, m=FLOATS: [[2.0 * x[0], 2.0 * x[1]]])
 
