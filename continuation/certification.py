@@ -52,12 +52,13 @@ from .zeros import (
     SAME,
     Function,
     Leaf,
-    chains,
     classify,
     count_zeros,
     float_value,
     functions_of,
+    one_zero_groups,
     prove_zero,
+    reports,
     run_at,
 )
 
@@ -95,6 +96,7 @@ class _Run:
         self.nodes: list = []
         self.node_distance = 0.0
         self.proven: list[ProvenPoint] = []
+        self._run_signs: dict = {}  # the direction of the run through each zero at a point
         self._node_jacobians: dict = {}
 
     # -- tubes and points -------------------------------------------------------------------
@@ -256,13 +258,6 @@ class _Run:
 
     # -- zeros of fold components and events --------------------------------------------------
 
-    def _reported(self, function: Function) -> set:
-        if function.event is None:
-            return {p.index for p in self.curve.special_points
-                    if p.kind is SpecialKind.FOLD and p.coordinate == function.coordinate}
-        return {p.index for p in self.curve.special_points
-                if p.kind is SpecialKind.EVENT and p.event == function.position}
-
     def _fail(self, function: Function, message: str, segment=None, point=None) -> _Failure:
         check = Check.EVENT if function.event is not None else Check.FOLD
         return _Failure(check, f"{function.name}: {message}", segment=segment, point=point)
@@ -322,6 +317,7 @@ class _Run:
         if isinstance(stretch, _Failure):
             return stretch
         direction = stretch[0][1].sign
+        self._run_signs[i] = direction
         if reported and function.direction and direction != function.direction:
             return self._fail(function, f"its zero at {self.points.point(i)} is reported but "
                               "crosses the "
@@ -449,7 +445,7 @@ class _Run:
     def _zeros(self, function: Function, at_ends):
         """:meth:`zeros`, with a zero at the end points ``at_ends`` whatever their signs."""
         m = len(self.x) - 1
-        reported = self._reported(function)
+        reported = reports(self.curve, function)[0]
         excluded: dict = {}
         self._exclude(function, 0, m, reported, excluded)
         signs = [self._sign_at(function, i, excluded) for i in range(m + 1)]
@@ -459,6 +455,11 @@ class _Run:
         at_zero = sorted(reported | {i for i, s in enumerate(signs) if s == 0})
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
         first, same = len(self.proven), []
+        self._run_signs = {}
+        twice = reports(self.curve, function)[1]
+        if twice is not None:
+            return self._fail(function, f"it is reported twice at {self.points.point(twice)}",
+                              point=twice)
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
             if failure is not None:
@@ -488,18 +489,21 @@ class _Run:
 
     def _one_zero(self, function: Function, same: list, reported: set, first: int):
         """Zeros proven at consecutive points with one monotone run between them (segments
-        ``same``) are one zero: listed once (the reported one, else the first), a failure if
-        more than one of them is reported."""
+        ``same``; for a closed curve also its first and last point, with runs in one direction
+        through the first point's node) are one zero: listed once (the reported one, else the
+        first), a failure if more than one of them is reported."""
+        m, at = len(self.x) - 1, {p.index for p in self.proven[first:]}
+        seam = self.curve.status is Status.CLOSED and {0, m} <= at and \
+            self._run_signs.get(0) == self._run_signs.get(m)  # runs in one way through node 0
         drop: set = set()
-        for group in chains(same):
-            points = range(group[0], group[-1] + 2)
+        for group in one_zero_groups(same, m if seam else None):
+            points = sorted(group)
             claimed = [i for i in points if i in reported]
             if len(claimed) > 1:
                 names = [self.points.point(i) for i in claimed[:2]]
                 return self._fail(function, f"the zeros reported at {names[0]} and {names[1]} "
-                                  "are one zero (one "
-                                  "monotone run between them)", segment=group[0],
-                                  point=claimed[1])
+                                  "are one zero (one monotone run between them)",
+                                  segment=min(claimed[1] - 1, m - 1), point=claimed[1])
             keep = claimed[0] if claimed else points[0]
             drop |= set(points) - {keep}
         self.proven[first:] = [p for p in self.proven[first:] if p.index not in drop]

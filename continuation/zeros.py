@@ -25,8 +25,8 @@ from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, sq
 from .numbers import FLOATS, Jet, jets
 from .result import SpecialKind
 
-__all__ = ["SAME", "Function", "Leaf", "chains", "classify", "count_zeros", "functions_of",
-           "prove_zero", "run_at", "runs"]
+__all__ = ["SAME", "Function", "Leaf", "classify", "count_zeros", "functions_of",
+           "one_zero_groups", "prove_zero", "reports", "run_at", "runs"]
 
 
 @dataclass(frozen=True)
@@ -300,13 +300,30 @@ def functions_of(curve, events, fold_coordinates) -> list[Function]:
     return functions
 
 
-def chains(indices: list) -> list:
-    """Runs of consecutive integers in the increasing list ``indices`` (segments whose zeros at
-    their ends are one, :data:`SAME`)."""
-    out: list = []
-    for i in indices:
-        if out and out[-1][-1] == i - 1:
-            out[-1].append(i)
-        else:
-            out.append([i])
-    return out
+def one_zero_groups(same: list, seam: int | None = None) -> list:
+    """The points whose zeros are one, as sets: ``s`` and ``s + 1`` for each segment ``s`` in
+    ``same`` (:data:`SAME`), joined where they share a point; with ``seam = m`` (a closed
+    curve's last point) also ``0`` and ``m``."""
+    groups = [{s, s + 1} for s in same] + ([{0, seam}] if seam is not None else [])
+    joined: list = []
+    for group in groups:
+        for other in [g for g in joined if g & group]:
+            joined.remove(other)
+            group = group | other
+        joined.append(group)
+    return joined
+
+
+def reports(curve, function) -> tuple[set, int | None]:
+    """The points where the curve reports a zero of ``phi`` (a fold in its coordinate or the
+    event at its position), and a point where it reports one twice (or ``None``)."""
+    kind = SpecialKind.FOLD if function.event is None else SpecialKind.EVENT
+    which = function.coordinate if function.event is None else function.position
+    seen: set = set()
+    twice = None
+    for p in curve.special_points:
+        if p.kind is kind and (p.coordinate if kind is SpecialKind.FOLD else p.event) == which:
+            if p.index in seen and twice is None:
+                twice = p.index
+            seen.add(p.index)
+    return seen, twice

@@ -371,6 +371,44 @@ def test_one_zero_reported_at_two_points_is_not_two_zeros(u, rows, listed):
         assert [(p.index, p.reported) for p in cert.special_points] == listed
 
 
+@pytest.mark.parametrize("u", [[-2e-5, -1e-5, -4e-14, 4e-14, 1e-5, 2e-5],
+                               [-2e-5, -1e-5, 0.0, 1e-5, 2e-5]])
+def test_one_zero_reported_twice_at_one_point_is_not_two_zeros(u):
+    # reported at two points that are merged (4e-14 apart), or twice at one point
+    # (adversarial review: the reports were a set of points, and the second one vanished)
+    line = _line_through([[v * math.sqrt(0.5)] * 2 for v in u])
+    rows = (2, 3) if len(u) == 6 else (2, 2)
+    event = Event("x = 0", lambda x, numbers=FLOATS: x[0], 1)
+    cert = certify(_with_events(line, rows), LINE, [event], fold_coordinates=())
+    assert not cert.proven and "reported twice at point 2" in cert.message, cert.message
+
+
+@pytest.mark.parametrize("rows, listed", [((0, 129), None), ((1, 128), None), ((1,), [1]),
+                                          ((129,), [129])])
+def test_the_seam_zero_of_a_closed_curve_is_one_zero(rows, listed):
+    # the unit circle from (1, 0) round to it, points 1e-10 from the seam on both sides:
+    # y = 0 upwards is met once, at the seam; reported at two points it is a false claim,
+    # reported at one it is listed once (adversarial review)
+    theta = np.array([0.0, 1e-10, *np.linspace(0.05, 2 * math.pi - 0.05, 126),
+                      2 * math.pi - 1e-10, 2 * math.pi])
+    x = np.column_stack([np.cos(theta), np.sin(theta)])
+    x[-1] = x[0]
+    template = trace(circles(), [1.0, 0.0])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
+    curve = dataclasses.replace(template, x=x, s=s,
+                                tangents=np.column_stack([-np.sin(theta), np.cos(theta)]),
+                                ds=np.diff(s, prepend=0.0),
+                                newton_iterations=np.zeros(len(x), int),
+                                residuals=np.zeros(len(x)), special_points=())
+    event = Event("y", lambda p, numbers=FLOATS: p[1], 1)
+    cert = certify(_with_events(curve, rows), UNIT_CIRCLE, [event], fold_coordinates=())
+    if listed is None:
+        assert not cert.proven and "are one zero" in cert.message, cert.message
+    else:
+        assert cert.proven, cert.message
+        assert [p.index for p in cert.special_points] == listed
+
+
 def test_a_failure_after_merged_points_names_the_caller_segment():
     # points 2 and 3 repeat each other (merged); a crossing at u = 5e-6 lies on segment 3
     # (points 3 to 4), not on segment 2 (5e-14 long). From an adversarial review.
