@@ -22,9 +22,9 @@ ball arithmetic (every rounding outwards):
 
 For a curve reported closed, its last point must be its first (within ``special_tolerance``)
 and the arc is proven to run on from the last point's node to the first point's. The zeros are
-those met along the curve from its first point to its last: a zero at the seam is listed once
-when the boxes proven at both ends nest, and a curve traced twice round meets (and lists) each
-zero twice.
+those met along the curve from its first point to its last: a zero at the seam is one zero
+(listed once; reported at both ends, a failure), and a curve traced twice round meets (and
+lists) each zero twice.
 
 Anything else fails with the first segment or point where a test failed and why; a curve is
 never reported proven on evidence that is only numerical. Branch points (where the solution
