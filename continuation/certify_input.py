@@ -34,6 +34,9 @@ def not_certifiable(curve: Curve, problem, events, fold_coordinates) -> tuple | 
     for c in fold_coordinates:
         if not (isinstance(c, (int, np.integer)) and 0 <= c < n1):
             raise ValueError(f"fold coordinate {c!r} is outside [0, {n1 - 1}]")
+    if len(set(fold_coordinates)) != len(fold_coordinates):
+        raise ValueError(f"fold_coordinates = {tuple(fold_coordinates)!r} repeats a coordinate "
+                         "(its folds would be counted twice)")
     # a fold's coordinate and an event's position are ints (SpecialPoint)
     folds = {cast(int, p.coordinate) for p in curve.special_points
              if p.kind is SpecialKind.FOLD}

@@ -574,6 +574,9 @@ def test_an_event_must_be_written_over_numbers(cubic_curve):
         certify(cubic_curve, cubic(), [STOP, plain])
     with pytest.raises(ValueError, match="fold_coordinates"):
         certify(cubic_curve, cubic(), [STOP, MARK], fold_coordinates=())
+    # a coordinate given twice would count each fold twice (adversarial review)
+    with pytest.raises(ValueError, match="repeats a coordinate"):
+        certify(cubic_curve, cubic(), [STOP, MARK], fold_coordinates=(0, 0))
 
 
 def test_options_are_checked():
