@@ -46,7 +46,7 @@ from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPo
 from .certify_input import not_certifiable
 from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
 from .numbers import balls
-from .refine import Points, seam_once
+from .refine import Points
 from .result import Curve, SpecialKind, Status
 from .zeros import (
     SAME,
@@ -445,7 +445,10 @@ class _Run:
     def _zeros(self, function: Function, at_ends):
         """:meth:`zeros`, with a zero at the end points ``at_ends`` whatever their signs."""
         m = len(self.x) - 1
-        reported = reports(self.curve, function)[0]
+        reported, twice = reports(self.curve, function)
+        if twice is not None:
+            return self._fail(function, f"it is reported twice at {self.points.point(twice)}",
+                              point=twice)
         excluded: dict = {}
         self._exclude(function, 0, m, reported, excluded)
         signs = [self._sign_at(function, i, excluded) for i in range(m + 1)]
@@ -456,10 +459,6 @@ class _Run:
         cache: dict = {s: [Leaf(True, sign)] for s, sign in excluded.items()}  # whole segments
         first, same = len(self.proven), []
         self._run_signs = {}
-        twice = reports(self.curve, function)[1]
-        if twice is not None:
-            return self._fail(function, f"it is reported twice at {self.points.point(twice)}",
-                              point=twice)
         for i in at_zero:
             failure = self._zero_at(function, i, i in reported, cache)
             if failure is not None:
@@ -564,7 +563,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             failure = run.zeros(function)
             if failure is not None:
                 break
-    proven = seam_once(points.curve, run.proven) if curve.status is Status.CLOSED else run.proven
+    proven = run.proven
     # in the caller's indices (a zero at an inserted point, unreported, crossing against its
     # event's direction: the caller's point before it)
     proven = [dataclasses.replace(p, index=points.segment_of(p.index)

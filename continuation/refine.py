@@ -1,7 +1,6 @@
 """The points :func:`continuation.certify` proves: the caller's curve with repeated points
 merged and, where a segment's tube cannot be proven, points of the arc inserted; the map
-back to the caller's indices, in which the certificate names points and segments; and a
-closed curve's zeros at its seam listed once.
+back to the caller's indices, in which the certificate names points and segments.
 
 A traced curve's steps follow its own accuracy, not the tubes': where the curve bends on a
 scale far below its step (a boundary near a corner at large friction), Krawczyk's operator
@@ -14,17 +13,15 @@ the error of the cubic through it by about 16.
 from __future__ import annotations
 
 import dataclasses
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from .certificate import ProvenPoint
 from .krawczyk import Frame, kernel
 from .numbers import FLOATS
 from .result import Curve
 
-__all__ = ["Points", "merge_duplicates", "seam_once"]
+__all__ = ["Points", "merge_duplicates"]
 
 
 def merge_duplicates(curve: Curve, tolerance: float) -> tuple[Curve, list]:
@@ -156,33 +153,3 @@ class Points:
         if a is not None and b is not None:
             return f"segment {a} (points {a} to {b})"
         return f"segment {self.segment_of(s)} (a part between points inserted in it)"
-
-
-def seam_once(curve: Curve, proven: list) -> list:
-    """The zeros of a closed curve without the second copy of each one at its seam.
-
-    A closed curve's last point is its first, so a zero there is proven at both ends; the one
-    the run does not report (an end's zero, ``reported = False``) is dropped when one of the
-    two boxes, for the same function, holds the other (if neither is reported, the last one).
-    """
-    m = len(curve.x) - 1
-
-    def same(p: ProvenPoint, q: ProvenPoint) -> bool:
-        # one box inside the other: it holds the other's only zero, so the two are one (boxes
-        # that only overlap may each hold a zero of its own)
-        if (p.kind, p.coordinate, p.event) != (q.kind, q.coordinate, q.event):
-            return False
-        gap = float(np.max(np.abs(p.centre - q.centre)))
-        if gap == 0.0:  # one centre: the smaller box is inside the larger
-            return True
-        reach = math.nextafter(gap * (1.0 + 1e-12) + min(p.radius, q.radius), math.inf)
-        return reach <= max(p.radius, q.radius)
-
-    def copy(p: ProvenPoint) -> bool:
-        # an unreported zero at an end, the same as a kept one at the other end: reported, or
-        # the first point's if neither is
-        return not p.reported and p.index in (0, m) and any(
-            q.index == m - p.index and (q.reported or q.index == 0) and same(p, q)
-            for q in proven)
-
-    return [p for p in proven if not copy(p)]

@@ -668,24 +668,3 @@ def test_a_curve_reported_closed_must_end_on_its_first_point():
 
 UNIT_CIRCLE = Problem(lambda x, m=FLOATS: [x[0] * x[0] + x[1] * x[1] - 1.0],
                       lambda x, m=FLOATS: [[2.0 * x[0], 2.0 * x[1]]])
-
-
-def test_a_zero_at_the_seam_is_dropped_only_if_one_box_holds_the_other():
-    from continuation.certificate import ProvenPoint
-    from continuation.refine import seam_once
-
-    curve = trace(circles(), [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
-    m = len(curve) - 1
-
-    def zero(index, centre, radius, reported):
-        return ProvenPoint(SpecialKind.FOLD, index, np.array(centre), radius, 0.0,
-                           coordinate=0, reported=reported)
-
-    inside = [zero(0, [1.0, 1e-7], 1e-8, False), zero(m, [1.0, 0.0], 1e-6, True)]
-    assert seam_once(curve, inside) == inside[1:]
-    # overlapping boxes may each hold a zero of their own: both are listed
-    overlapping = [zero(0, [1.0, 1.5e-6], 1e-6, False), zero(m, [1.0, 0.0], 1e-6, True)]
-    assert seam_once(curve, overlapping) == overlapping
-    other = [zero(0, [1.0, 0.0], 1e-8, False), dataclasses.replace(
-        zero(m, [1.0, 0.0], 1e-6, True), coordinate=1)]
-    assert seam_once(curve, other) == other
