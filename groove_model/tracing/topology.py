@@ -269,9 +269,17 @@ def thresholds(c: float = 1.0) -> Thresholds:
 
 
 def _merge(a: CurveTopology, b: CurveTopology) -> CurveTopology:
-    """What two topologies share; a field where they differ is ``None`` (not checked)."""
-    return CurveTopology(**{f.name: getattr(a, f.name) if getattr(a, f.name) == getattr(
+    """What two topologies share; a field where they differ is ``None`` (not checked).
+
+    A boundary present on one side only has no end to share: the absent side's is vacuous,
+    and just past the threshold the physical part is a stub within rounding of its start,
+    whose end is a rounding call (below ``k_branch`` the branch point's ``T/N = c sqrt 2``
+    exceeds ``k`` by ``1e-12``, and the two rows the validity's tolerance admits end where
+    ``T/N_R`` reaches ``k``, not at a junction), so the end is not checked either.
+    """
+    merged = CurveTopology(**{f.name: getattr(a, f.name) if getattr(a, f.name) == getattr(
         b, f.name) else None for f in dataclasses.fields(CurveTopology)})
+    return merged if a.present == b.present else dataclasses.replace(merged, end=None)
 
 
 def expected_topology(params: Parameters) -> dict[str, CurveTopology]:

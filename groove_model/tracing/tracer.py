@@ -153,7 +153,7 @@ def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[st
     return problems
 
 
-def _check(curves: dict, params: Parameters, notes: list, expected: dict) -> dict:
+def _check(curves: dict, params: Parameters, expected: dict) -> dict:
     """Compare each curve with the expected topology; a differing curve becomes a failure."""
     checked = {}
     for name, curve in curves.items():
@@ -162,8 +162,6 @@ def _check(curves: dict, params: Parameters, notes: list, expected: dict) -> dic
             curve = curve.failed(f"the traced curve differs from the expected topology for "
                                  f"k = {params.k!r}: it " + "; it ".join(problems))
         checked[name] = curve
-    if expected["dr_no_roll"].present and "dr_no_roll" not in checked:
-        notes.append(f"dr_no_roll is expected for k = {params.k!r} but was not traced")
     return checked
 
 
@@ -219,13 +217,14 @@ class _Job:
     def _events(self, system: BoundarySystem) -> list[Tagged]:
         return [*domain_events(system, self.gamma_min), *validity_events(system)]
 
-    def dr_no_roll(self) -> tuple[dict, list, np.ndarray | None]:
+    def dr_no_roll(self, expected: bool | None) -> tuple[dict, list, np.ndarray | None]:
         """``dr_no_roll`` from the branch point ``(arctan sqrt 2, 0)``, and the junction.
 
         In its deflated form the branch point is a regular point of ``dr_no_roll`` alone. Its
         physical part ends where ``T/N_L`` reaches ``k``, the junction, which it crosses
-        transversally for every ``k``. Returns the curve (if it has a physical part), notes and
-        the junction (``None`` for ``k <= k_branch``).
+        transversally for every ``k``. Returns the curve (if it has a physical part, or if it
+        has none where it is ``expected``: then it is a failure), notes and the junction
+        (``None`` for ``k <= k_branch``).
         """
         params = self.params
         system = BoundarySystem("dr_no_roll", params, "sqrt_beta_L", conditioned=True)
@@ -241,6 +240,10 @@ class _Job:
             junction = curve.x[np.flatnonzero(curve.physical)[-1]].copy()
         if len(curve.x) >= 2 or not curve.ok:
             return {"dr_no_roll": curve}, [], junction
+        if expected:
+            return {"dr_no_roll": curve.failed(
+                f"dr_no_roll is expected for k = {params.k!r} (k > c sqrt 2) but its physical "
+                f"part is {len(curve.x)} point(s): T/N_L > k where it should be below")}, [], None
         if len(curve.x) == 1:
             return {}, [f"dr_no_roll reduces to its branch point (arctan sqrt 2, 0) for "
                         f"k = {params.k!r}: T/N = c sqrt 2 = k there and > k beyond"], junction
@@ -367,7 +370,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         curves, notes, junction = {}, [f"dr_no_roll has no physical part for k = "
                                        f"{k_text(params.k)}: T/N_L > k all along it"], None
     else:
-        curves, notes, junction = job.dr_no_roll()
+        curves, notes, junction = job.dr_no_roll(expected["dr_no_roll"].present)
     curves.update(job.limit(junction))
     from_seed = expected["rs_no_roll"].start == Where.SEED.value
     curves["rs_no_roll"] = job.rs_no_roll(None if from_seed else junction)
@@ -376,7 +379,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
                      "its unphysical part from the seed (arctan(k/c), 0) to the junction "
                      "(d_L < 0) is not traced, even with keep_unphysical")
 
-    curves = _check(curves, params, notes, expected)
+    curves = _check(curves, params, expected)
     distance = (_limit_distance(curves["dr_limit"], curves["rs_limit"], params)
                 if curves["dr_limit"].ok and curves["rs_limit"].ok else math.nan)
     if curves["rs_limit"].ok and not distance <= LIMIT_TOLERANCE:
