@@ -351,10 +351,10 @@ def test_bad_arguments_exit_2_naming_the_quantity(argv, message, capsys):
 def test_bad_paths_exit_2(tmp_path, capsys):
     assert run_cli(["map", "-k", "1", "-o", str(tmp_path / "m.gif")]) == EXIT_USAGE
     assert "output format '.gif'" in capsys.readouterr().out
-    assert run_cli(["map", "-k", "1", "-o", str(tmp_path / "no" / "m.png")]) == EXIT_USAGE
-    assert "does not exist" in capsys.readouterr().out
     afile = tmp_path / "file"
     afile.write_text("x")
+    assert run_cli(["map", "-k", "1", "-o", str(afile / "no" / "m.png")]) == EXIT_USAGE
+    assert "is a file, not a directory" in capsys.readouterr().out
     assert run_cli(["audit", "-k", "1", "--out", str(afile)]) == EXIT_USAGE
     assert "is not a directory" in capsys.readouterr().out
 

@@ -236,3 +236,67 @@ def test_an_unwritable_out_directory_is_refused_before_anything_is_computed(tmp_
     assert f"--out {tmp_path / 'new'} cannot be written: {tmp_path} is not writable" in \
         captured.err
     assert captured.out == ""
+
+
+@pytest.mark.parametrize(("argv", "blocked", "untouched"), [
+    # the second file of a group is blocked by a directory: the first must not be replaced
+    (["sweep", "--k-min", "1", "--k-max", "2", "-n", "2", "--out", "DIR"],
+     "sweep_special_points.csv", "sweep_boundaries.csv"),
+    (["audit", "-k", "1", "--out", "DIR"], "claims.json", "claims.md"),
+    (["atlas", "--k-min", "1", "--k-max", "2", "--out", "DIR"], "atlas_thresholds.csv",
+     "atlas_junction.csv"),
+])
+def test_a_directory_in_a_files_place_leaves_every_file_of_the_group_as_it_was(
+        argv, blocked, untouched, tmp_path, capsys):
+    (tmp_path / blocked).mkdir()
+    (tmp_path / untouched).write_text("old")
+    argv = [a.replace("DIR", str(tmp_path)) for a in argv]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert f"cannot write {tmp_path / blocked}: a directory is in its place" in err
+    assert ".partial-" not in err  # the file's name, not its temporary's
+    assert (tmp_path / untouched).read_text() == "old"
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([blocked, untouched])
+
+
+def test_a_sweep_whose_file_is_blocked_fails_before_tracing(tmp_path, monkeypatch, capsys):
+    (tmp_path / "sweep_boundaries.csv").mkdir()
+    monkeypatch.setattr("groove_model.tracing.sweep.trace_boundaries",
+                        lambda *a, **k: pytest.fail("traced before the files were checked"))
+    assert main(["sweep", "--k-min", "1", "--k-max", "2", "-n", "2", "--out",
+                 str(tmp_path)]) == 1
+    assert "a directory is in its place" in capsys.readouterr().err
+
+
+def test_a_figure_goes_into_a_new_directory_as_out_does(tmp_path, capsys):
+    target = tmp_path / "new" / "sub" / "m.png"
+    assert main(["map", "-k", "1", "-o", str(target), "--no-boundaries",
+                 "--resolution", "12"]) == 0
+    assert target.is_file()
+
+
+@pytest.mark.parametrize("argv", [
+    ["map", "-k", "1", "-o", "DIR/new/m.png", "--no-boundaries", "--resolution", "12"],
+    ["plot", "RESULTS/boundaries_k1.csv", "-o", "DIR/p.png"],
+])
+def test_an_unwritable_figure_directory_is_refused_before_anything_is_computed(
+        argv, tmp_path, monkeypatch, capsys):
+    import os
+
+    # root may write anywhere, so the directory's permission is stood in for by os.access
+    monkeypatch.setattr(os, "access", lambda path, mode: Path(path) != tmp_path)
+    results = Path(__file__).resolve().parents[1] / "results"
+    argv = [a.replace("DIR", str(tmp_path)).replace("RESULTS", str(results)) for a in argv]
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    assert f"cannot be written: {tmp_path} is not writable" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_directory_given_as_the_figure_is_refused(tmp_path, capsys):
+    (tmp_path / "d.png").mkdir()
+    with pytest.raises(SystemExit) as exit_info:
+        main(["map", "-k", "1", "-o", str(tmp_path / "d.png"), "--no-boundaries"])
+    assert exit_info.value.code == 2
+    assert "is a directory; give a file name" in capsys.readouterr().err

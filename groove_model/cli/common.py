@@ -42,6 +42,7 @@ __all__ = [
     "computation_errors",
     "figure_target",
     "friction",
+    "make_directory",
     "one_friction",
     "output_directory",
     "poisson",
@@ -271,21 +272,34 @@ def _existing_ancestor(path: Path) -> Path | None:
 def figure_target(text: str) -> tuple[Path, str]:
     """A figure file to write and its format, read from its suffix.
 
+    Its directory is created when the figure is written (:func:`make_directory`), as
+    ``--out`` creates its directory.
+
     Raises
     ------
     UsageError
-        If the suffix is not one of :data:`FIGURE_FORMATS` or the directory does not exist.
+        If the suffix is not one of :data:`FIGURE_FORMATS`, a directory is in the file's place,
+        or its directory cannot be created or written (a file in the way, no permission):
+        checked before anything is computed.
     """
     target = Path(text)
     fmt = target.suffix.lstrip(".").lower()
     if fmt not in FIGURE_FORMATS:
         raise UsageError(f"output format {target.suffix or '(none)'!r} of {target} is not one "
                          "of .png, .svg, .pdf")
-    if target.parent.exists() and not target.parent.is_dir():
-        raise UsageError(f"{target.parent} of {target} is a file, not a directory")
-    if not target.parent.is_dir():
-        raise UsageError(f"directory {target.parent} of {target} does not exist")
+    if target.is_dir():
+        raise UsageError(f"-o {target} is a directory; give a file name such as {target}/map.png")
+    existing = target.parent if target.parent.exists() else _existing_ancestor(target.parent)
+    if existing is not None and not existing.is_dir():
+        raise UsageError(f"{existing} of {target} is a file, not a directory")
+    if existing is not None and not os.access(existing, os.W_OK | os.X_OK):
+        raise UsageError(f"-o {target} cannot be written: {existing} is not writable")
     return target, fmt
+
+
+def make_directory(target: Path) -> None:
+    """Create the directory of ``target`` (and its parents) if it does not exist."""
+    target.parent.mkdir(parents=True, exist_ok=True)
 
 
 def poisson(text: str) -> float:

@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
-from .common import EXIT_OK, UsageError, add_command, figure_target, require_plotting
+from .common import (
+    EXIT_OK,
+    UsageError,
+    add_command,
+    figure_target,
+    make_directory,
+    require_plotting,
+)
 
 __all__ = ["add_parser", "run"]
 
@@ -56,6 +63,7 @@ def run(args) -> int:
         sources[key] = name
         frames.append(frame)
     target, fmt = figure_target(args.output)
+    make_directory(target)
     for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):
         print(f"figure: {path}")
     return EXIT_OK

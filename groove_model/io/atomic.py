@@ -9,6 +9,7 @@ heavy, so that writing a file does not load pandas.
 
 from __future__ import annotations
 
+import errno
 import logging
 import os
 import re
@@ -18,8 +19,8 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["WriteError", "atomic_write", "atomic_write_all", "commit_temporary", "create_temporary",
-           "remove_stale_temporaries"]
+__all__ = ["WriteError", "atomic_write", "atomic_write_all", "check_targets", "commit_temporary",
+           "create_temporary", "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
 
@@ -179,18 +180,32 @@ def atomic_write(path, write) -> Path:
     return atomic_write_all([(path, write)])[0]
 
 
+def check_targets(paths) -> None:
+    """:class:`WriteError` naming the first of ``paths`` that a file cannot be moved onto: a
+    directory (or a link to one) in its place.
+
+    The moves of :func:`atomic_write_all` come last, one by one; checking their targets before
+    anything is written keeps one that fails from leaving the files before it replaced.
+    """
+    for path in map(Path, paths):
+        if path.is_dir():
+            raise WriteError(errno.EISDIR, f"cannot write {path}: a directory is in its place")
+
+
 def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> list[Path]:
     """:func:`atomic_write` for files that belong together, e.g. the two CSVs of one ``k``.
 
     Every file is written to its temporary first; only when all were written are they moved
     into place, so a full disk or a failed writer leaves none of them changed (the moves
-    themselves need no space). Returns the paths, in order.
+    themselves need no space, and their targets are checked first: :func:`check_targets`).
+    Returns the paths, in order.
 
     Raises
     ------
     WriteError
         Naming the file that could not be written; no temporary is left.
     """
+    check_targets(target for target, _ in files)
     temporaries: list[tuple[Path, Path]] = []
     current = None
     try:

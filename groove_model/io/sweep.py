@@ -10,7 +10,13 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from ..tracing import SPECIAL_POINT_COLUMNS, SweepResult
-from .atomic import commit_temporary, create_temporary, remove_stale_temporaries
+from .atomic import (
+    WriteError,
+    check_targets,
+    commit_temporary,
+    create_temporary,
+    remove_stale_temporaries,
+)
 
 __all__ = ["SWEEP_FILES", "write_sweep"]
 
@@ -46,6 +52,12 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     failed : list of SweepResult
         The results that were not ok.
 
+    Raises
+    ------
+    WriteError
+        Naming a file that cannot be written (checked before the first ``k`` where it can be:
+        a directory in the place of a file); nothing is left.
+
     Notes
     -----
     Floats are written with 17 significant digits, as by :func:`write_boundary_set`, so the
@@ -56,30 +68,39 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     remove_stale_temporaries(directory)
     targets = [directory / f"{prefix}_{table}{suffix}.csv"
                for table in ("boundaries", "special_points")]
-    opened = [_temporary(path) for path in targets]
-    failed = []
+    check_targets(targets)
+    opened: list = []
+    failed: list[SweepResult] = []
+    current = targets[0]  # the file being written, for the message of a failed write
     try:
+        for current in targets:
+            opened.append(_temporary(current))
         first = True
         for result in results:
             tables = (result.boundaries, result.special_points[list(SPECIAL_POINT_COLUMNS)])
-            for (handle, _), table in zip(opened, tables, strict=True):
+            for (handle, _), table, target in zip(opened, tables, targets, strict=True):
+                current = target
                 table.to_csv(handle, header=first, index=False, float_format="%.17g")
             first = False
             if not result.ok:
                 failed.append(result)
             if progress is not None:
                 progress(result)
-        for handle, _ in opened:
+        for (handle, _), target in zip(opened, targets, strict=True):
+            current = target
             handle.close()
         if failed or first:
             for _, name in opened:
                 name.unlink(missing_ok=True)
             return (), failed
-        for (_, name), path in zip(opened, targets, strict=True):
-            commit_temporary(name, path)
+        check_targets(targets)  # a directory made in a file's place while the sweep ran
+        for (_, name), current in zip(opened, targets, strict=True):
+            commit_temporary(name, current)
         return tuple(targets), failed
-    except BaseException:
+    except BaseException as exc:
         for handle, name in opened:
             handle.close()
             name.unlink(missing_ok=True)
+        if isinstance(exc, OSError) and not isinstance(exc, WriteError):
+            raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc
         raise
