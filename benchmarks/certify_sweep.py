@@ -1,6 +1,6 @@
 """Certify every boundary over the CI sweep of k: ``python benchmarks/certify_sweep.py [--json OUT]``.
 
-The k values are those of ``tests/test_sweep_topology.py`` (361: 300 log-spaced in
+The k values are those of ``tests/test_sweep_topology.py`` (367: 300 log-spaced in
 [1e-4, 1e6], the neighbours of the thresholds k = 1/sqrt 2, sqrt 2 and k_cross, values that
 once failed). For every k
 the boundaries are traced and certified (``trace_boundaries(k, certify=True)``); the script
@@ -34,9 +34,9 @@ K_CROSS = 15.19939619365445
 #: the k values of tests/test_sweep_topology.py
 SWEEP = sorted({
     *np.geomspace(1e-4, 1e6, 300).tolist(),
-    *(SQRT2 * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
-    *(1.0 / SQRT2 * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
-    *(K_CROSS * (1.0 + sign * 10.0 ** -j) for j in range(2, 11) for sign in (1, -1)),
+    *(SQRT2 * (1.0 + sign * 10.0 ** -j) for j in (*range(2, 11), 12) for sign in (1, -1)),
+    *(1.0 / SQRT2 * (1.0 + sign * 10.0 ** -j) for j in (*range(2, 11), 12) for sign in (1, -1)),
+    *(K_CROSS * (1.0 + sign * 10.0 ** -j) for j in (*range(2, 11), 12) for sign in (1, -1)),
     14.4, 14.5, 32.7274, 32.72740209872818, 0.00013848863713938732, 1.4283556979968262,
     1e4, 1e6, 0.09111627561154892,
 })
