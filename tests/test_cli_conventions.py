@@ -1,6 +1,7 @@
 """What every ``groove`` command shares: ``-k``, ``-v``, ``--version``, ``python -m``."""
 
 import importlib.metadata
+import math
 import logging
 import subprocess
 import sys
@@ -161,11 +162,23 @@ def test_the_point_solver_takes_any_k_and_poisson_ratio(capsys):
 
 def test_trace_boundaries_refuses_k_outside_the_verified_range():
     from groove_model.model.parameters import Compliance, Parameters
-    from groove_model.tracing import trace_boundaries
+    from groove_model.tracing import trace_boundaries, trace_many
 
-    for bad in (1e-5, 2e6, Parameters(1.0, Compliance(0.5))):
+    for bad in (1e-5, 2e6, Parameters(1.0, Compliance(0.5)), 0, -1.0, math.nan, math.inf):
         with pytest.raises(ValueError, match="outside the range the boundaries are traced for"):
             trace_boundaries(bad)
+    with pytest.raises(ValueError, match=r"k = 0.0 is outside .* 1e-4 <= k <= 1e6"):
+        trace_many([1.0, 0.0])
+
+
+@pytest.mark.parametrize("value", ["-inf", "-1e-3", "-Infinity", "-1E5"])
+def test_a_negative_number_written_any_way_is_a_value_not_an_option(value, capsys):
+    # argparse alone reads -inf and -1e-3 as options: "expected at least one argument"
+    with pytest.raises(SystemExit) as exit_info:
+        main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", value])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert f"friction coefficient k = {float(value)!r} is outside the allowed range" in err
 
 
 @pytest.mark.parametrize("argv, message", [

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import re
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -88,11 +89,20 @@ class _Formatter(argparse.RawDescriptionHelpFormatter):
         return super()._format_args(action, default_metavar)
 
 
+#: what argparse takes for a negative number (a value, not an option): its own ``-1`` and
+#: ``-0.5``, and also ``-1e-3``, ``-inf`` and ``-nan``, so that ``-k -inf`` gets the message
+#: that names k and its range rather than "expected at least one argument"
+_NEGATIVE_NUMBER = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
+
+
 def add_command(subparsers, name: str, help: str, description: str,
                 examples: str) -> argparse.ArgumentParser:
     """Register one ``groove`` command whose help ends with its examples; returns its parser."""
     parser = subparsers.add_parser(name, help=help, description=description, epilog=examples,
                                    formatter_class=_Formatter)
+    # argparse has no public setting for this; where its attribute is missing, nothing changes
+    if hasattr(parser, "_negative_number_matcher"):
+        parser._negative_number_matcher = _NEGATIVE_NUMBER
     add_verbose(parser)
     return parser
 

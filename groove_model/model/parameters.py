@@ -31,6 +31,7 @@ __all__ = [
     "gamma_delta_from_thetas",
     "k_text",
     "thetas_from_gamma_delta",
+    "traced_parameters",
 ]
 
 HALF_PI = 0.5 * math.pi
@@ -138,6 +139,29 @@ def check_traced_poisson(nu: float) -> float:
         raise ValueError(f"Poisson ratio nu = {nu!r} is outside the range the boundaries are "
                          "traced for: 0 <= nu <= 0.5")
     return nu
+
+
+def traced_parameters(k_or_params, compliance: Compliance | None = None) -> Parameters:
+    """:class:`Parameters` for tracing, checked against the traced ranges (:func:`check_traced`).
+
+    ``k_or_params`` is a :class:`Parameters` (``compliance`` ignored) or a friction coefficient
+    (with ``compliance``, default the paper's); a ``k`` that is not finite or not positive gets
+    the message of the traced range ``1e-4 <= k <= 1e6``, not only "finite and > 0".
+
+    Raises
+    ------
+    TypeError
+        If ``k`` is not a real number.
+    ValueError
+        If ``k`` or the compliance ratio is outside the traced ranges.
+    """
+    if isinstance(k_or_params, Parameters):
+        params = k_or_params
+    else:
+        check_traced_friction(_check_real("friction coefficient k", k_or_params))
+        params = Parameters(k_or_params, compliance if compliance is not None else Compliance())
+    check_traced(params)
+    return params
 
 
 def check_traced(params: Parameters) -> None:

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 from continuation import Options
 
-from ..model.parameters import Compliance, Parameters, check_flag, check_traced
+from ..model.parameters import Compliance, Parameters, check_flag, traced_parameters
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
 
@@ -106,9 +106,7 @@ def _check_ks(ks, compliance: Compliance | float | None) -> tuple[list[float], C
         compliance = Compliance(compliance)  # a ratio, as trace_atlas takes it
     values = []
     for k in ks:
-        params = Parameters(k, compliance)  # TypeError for str, bool, ...
-        check_traced(params)
-        values.append(params.k)
+        values.append(traced_parameters(k, compliance).k)  # TypeError for str, bool, ...
     return values, compliance
 
 

@@ -58,7 +58,7 @@ from ..model.boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from ..model.parameters import Parameters, check_flag, check_traced, k_text
+from ..model.parameters import Parameters, check_flag, k_text, traced_parameters
 from .assembly import (
     Role,
     Tagged,
@@ -347,8 +347,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     The expected topology comes from the atlas of special points; its thresholds are computed
     on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
-    params = Parameters.coerce(k)
-    check_traced(params)
+    params = traced_parameters(k)
     keep_unphysical = check_flag("keep_unphysical", keep_unphysical)
     raise_on_failure = check_flag("raise_on_failure", raise_on_failure)
     certify = check_flag("certify", certify)
