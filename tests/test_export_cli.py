@@ -443,3 +443,16 @@ def test_atomic_write_all_moves_the_files_only_when_every_one_was_written(tmp_pa
                               (tmp_path / "b.txt", lambda tmp: Path(tmp).write_text("new b"))])
     assert paths == [tmp_path / "a.txt", tmp_path / "b.txt"]
     assert [p.read_text() for p in paths] == ["new a", "new b"]
+
+
+@pytest.mark.parametrize("column, value, message", [
+    ("physical", "maybe", "column physical = 'maybe' in data row 3 is not True or False"),
+    ("certified", "yes", "column certified = 'yes' in data row 3 is not True, False or empty"),
+])
+def test_plot_names_the_row_and_value_of_a_bad_flag(column, value, message, written, tmp_path,
+                                                    capsys):
+    frame = _csv_text(written).astype({column: object})
+    frame.loc[2, column] = value
+    path = tmp_path / "bad.csv"
+    frame.to_csv(path, index=False)
+    assert message in _plot_refused([path], tmp_path, capsys)

@@ -137,20 +137,22 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         except ValueError as exc:
             raise ValueError(f"{path}: {exc}") from None
     _check_domain_rows(path, frame)
+    physical = frame["physical"].astype(str).str.lower()
+    certified = frame["certified"].fillna("").astype(str).str.lower()
+    for column, values, allowed in (("physical", physical, "True or False"),
+                                    ("certified", certified, "True, False or empty")):
+        bad = ~values.isin(["true", "false"] + ([""] if column == "certified" else []))
+        if bad.any():
+            row = int(np.flatnonzero(bad.to_numpy())[0])
+            raise ValueError(f"{path}: column {column} = {frame[column].iloc[row]!r} in data row "
+                             f"{row + 1} is not {allowed}")
+    frame["physical"] = physical.eq("true")
+    frame["certified"] = certified.map({"true": True, "false": False, "": None})
+    frame["point"] = frame["point"].fillna("")
     # the boundaries in their order, each along its arclength s, whatever the file's order
     order = frame["boundary"].map({name: i for i, name in enumerate(BOUNDARY_NAMES)})
-    frame = frame.assign(_order=order).sort_values(["_order", "s"], kind="stable") \
+    return frame.assign(_order=order).sort_values(["_order", "s"], kind="stable") \
         .drop(columns="_order").reset_index(drop=True)
-    frame["point"] = frame["point"].fillna("")
-    physical = frame["physical"].astype(str).str.lower()
-    if not physical.isin(["true", "false"]).all():
-        raise ValueError(f"{path}: column physical must be True or False")
-    frame["physical"] = physical.eq("true")
-    certified = frame["certified"].fillna("").astype(str).str.lower()
-    if not certified.isin(["true", "false", ""]).all():
-        raise ValueError(f"{path}: column certified must be True, False or empty")
-    frame["certified"] = certified.map({"true": True, "false": False, "": None})
-    return frame
 
 
 def _check_domain_rows(path: Path, frame: pd.DataFrame) -> None:

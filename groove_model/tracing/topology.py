@@ -54,6 +54,7 @@ from __future__ import annotations
 
 import dataclasses
 import functools
+import logging
 import math
 from dataclasses import dataclass
 
@@ -64,6 +65,8 @@ from .curves import PointKind
 __all__ = ["REFERENCE_RANGE", "THRESHOLD_BAND", "CurveTopology", "Thresholds", "TopologyRange",
            "expected_topology", "format_table", "thresholds", "thresholds_from_atlas",
            "topology_table"]
+
+logger = logging.getLogger(__name__)
 
 #: relative distance to a threshold within which what changes there is not checked
 THRESHOLD_BAND = 1e-9
@@ -265,7 +268,13 @@ def thresholds(c: float = 1.0) -> Thresholds:
         If the atlas failed.
     """
     low, high = REFERENCE_RANGE
-    return thresholds_from_atlas(atlas_in_k((low * c, high * c), c))
+    logger.info("the expected topology for compliance ratio c = %g: the special points followed "
+                "in k over [%g, %g] (once per ratio; the runs below are in log_k)",
+                c, low * c, high * c)
+    table = thresholds_from_atlas(atlas_in_k((low * c, high * c), c))
+    logger.info("thresholds for c = %g: %s", c,
+                ", ".join(f"{p.name} = {p.value:.15g}" for p in table.points))
+    return table
 
 
 def _merge(a: CurveTopology, b: CurveTopology) -> CurveTopology:
