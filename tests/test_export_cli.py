@@ -13,6 +13,7 @@ from groove_model.cli.trace import overlay_name
 from groove_model.io.export import (
     atomic_write,
     boundary_file_names,
+    incomplete_boundaries,
     read_boundaries_csv,
     write_boundary_set,
 )
@@ -456,3 +457,25 @@ def test_plot_names_the_row_and_value_of_a_bad_flag(column, value, message, writ
     path = tmp_path / "bad.csv"
     frame.to_csv(path, index=False)
     assert message in _plot_refused([path], tmp_path, capsys)
+
+
+@pytest.mark.parametrize(("k", "keep_unphysical"), [
+    (0.5, False), (0.5, True), (10.0, True), (1e5, False), (math.sqrt(2.0) * (1 - 1e-12), False),
+    (math.sqrt(2.0) * (1 + 1e-12), False), (1e-4, True)])
+def test_every_file_groove_trace_writes_is_whole(k, keep_unphysical, tmp_path):
+    paths = write_boundary_set(trace_boundaries(k, keep_unphysical=keep_unphysical), tmp_path)
+    assert incomplete_boundaries(read_boundaries_csv(paths[0])) == []
+
+
+def test_plot_warns_of_a_file_cut_short_and_draws_it(written, tmp_path, capsys):
+    out, _ = written
+    cut = tmp_path / "cut.csv"
+    cut.write_text("".join((out / "boundaries_k10.csv").read_text().splitlines(True)[:5]))
+    target = tmp_path / "cut.png"
+    assert main(["plot", str(cut), "-o", str(target)]) == 0
+    assert target.is_file()
+    err = capsys.readouterr().err
+    assert f"groove plot: warning: {cut}: no rs_limit rows" in err
+    assert "the last row of dr_limit (s = " in err and "is not marked as its end" in err
+    assert main(["plot", str(out / "boundaries_k10.csv"), "-o", str(target)]) == 0
+    assert "warning" not in capsys.readouterr().err

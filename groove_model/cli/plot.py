@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from .common import (
     EXIT_OK,
     UsageError,
@@ -26,7 +28,9 @@ def add_parser(subparsers):
         description="Draw the boundaries stored in boundaries_k*.csv files (one k per file, as "
                     "groove trace writes them) onto one overlay. A file holding several k, a "
                     "k given by two files, or a point outside 0 <= delta <= gamma <= pi/2 is "
-                    "refused (exit code 2) and nothing is drawn.",
+                    "refused (exit code 2) and nothing is drawn; a file that lacks part of a "
+                    "trace (a boundary, or the marked first or last row of one) is drawn with "
+                    "a warning.",
         examples=_EXAMPLES)
     p.add_argument("files", nargs="+", metavar="FILE.csv", help="boundaries CSV files")
     p.add_argument("-o", "--output", required=True, metavar="FIG.png",
@@ -40,7 +44,7 @@ def run(args) -> int:
     """Read every file, draw, write; :class:`UsageError` for an unreadable file or bad target."""
     # Imported here, not at the top: reading CSV and drawing load pandas and matplotlib, which
     # `groove --help` and `groove solve` should not wait for.
-    from ..io.export import read_boundaries_csv
+    from ..io.export import incomplete_boundaries, read_boundaries_csv
     from ..model.parameters import k_text
 
     require_plotting()
@@ -62,6 +66,9 @@ def run(args) -> int:
                              f"compliance ratio {key[1]:g}: give each once")
         sources[key] = name
         frames.append(frame)
+        for problem in incomplete_boundaries(frame):
+            print(f"groove plot: warning: {name}: {problem}: not the whole trace groove trace "
+                  "writes (cut short or edited?); drawn as it is", file=sys.stderr)
     target, fmt = figure_target(args.output)
     make_directory(target)
     for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):

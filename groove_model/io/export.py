@@ -16,6 +16,7 @@ from .atomic import WriteError, atomic_write, atomic_write_all, remove_stale_tem
 __all__ = [
     "atomic_write",
     "boundary_file_names",
+    "incomplete_boundaries",
     "read_boundaries_csv",
     "remove_stale_temporaries",
     "write_boundary_set",
@@ -153,6 +154,28 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     order = frame["boundary"].map({name: i for i, name in enumerate(BOUNDARY_NAMES)})
     return frame.assign(_order=order).sort_values(["_order", "s"], kind="stable") \
         .drop(columns="_order").reset_index(drop=True)
+
+
+#: the boundaries ``groove trace`` writes for every ``k`` (``dr_no_roll`` only for some)
+_ALWAYS = ("dr_limit", "rs_limit", "rs_no_roll")
+
+
+def incomplete_boundaries(frame: pd.DataFrame) -> list[str]:
+    """What a boundaries table (:func:`read_boundaries_csv`) lacks of a whole trace, in words.
+
+    ``groove trace`` writes ``dr_limit``, ``rs_limit`` and ``rs_no_roll`` for every ``k``, and
+    marks the first and the last row of each boundary (``start``, ``branch_point`` or
+    ``junction``; ``end`` or ``junction``). A boundary missing, or one whose first or last row
+    is unmarked, shows a file cut short or edited (or the rows of a failed trace); an empty
+    list, none of that.
+    """
+    problems = [f"no {name} rows" for name in _ALWAYS if name not in set(frame["boundary"])]
+    for name, rows in frame.groupby("boundary", sort=False):
+        for where, row in (("first", rows.iloc[0]), ("last", rows.iloc[-1])):
+            if not row["point"]:
+                problems.append(f"the {where} row of {name} (s = {float(row['s']):.6g}) is not "
+                                f"marked as its {'start' if where == 'first' else 'end'}")
+    return problems
 
 
 def _check_domain_rows(path: Path, frame: pd.DataFrame) -> None:
