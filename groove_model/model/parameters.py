@@ -144,18 +144,22 @@ def check_traced_poisson(nu: float) -> float:
 def traced_parameters(k_or_params, compliance: Compliance | None = None) -> Parameters:
     """:class:`Parameters` for tracing, checked against the traced ranges (:func:`check_traced`).
 
-    ``k_or_params`` is a :class:`Parameters` (``compliance`` ignored) or a friction coefficient
-    (with ``compliance``, default the paper's); a ``k`` that is not finite or not positive gets
-    the message of the traced range ``1e-4 <= k <= 1e6``, not only "finite and > 0".
+    ``k_or_params`` is a :class:`Parameters` (then no ``compliance``: it has its own) or a
+    friction coefficient (with ``compliance``, default the paper's); a ``k`` that is not finite
+    or not positive gets the message of the traced range ``1e-4 <= k <= 1e6``, not only
+    "finite and > 0".
 
     Raises
     ------
     TypeError
-        If ``k`` is not a real number.
+        If ``k`` is not a real number, or a :class:`Parameters` comes with a ``compliance``.
     ValueError
         If ``k`` or the compliance ratio is outside the traced ranges.
     """
     if isinstance(k_or_params, Parameters):
+        if compliance is not None:
+            raise TypeError(f"friction coefficient k must be a real number when a compliance is "
+                            f"given, got {k_or_params!r}")
         params = k_or_params
     else:
         check_traced_friction(_check_real("friction coefficient k", k_or_params))
