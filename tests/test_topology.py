@@ -131,3 +131,22 @@ def test_every_traced_curve_says_where_it_starts_and_ends():
     assert np.array_equal(bs.curves["dr_no_roll"].x[-1], junction)
     assert np.array_equal(bs.curves["rs_no_roll"].x[0], junction)
     assert junction[2] == pytest.approx(math.atan(0.1), abs=1e-15)  # T/N_L = cot beta_L = k
+
+
+@pytest.mark.parametrize("k", [1.4142135623738024, math.sqrt(2.0) * (1.0 + 7e-13),
+                               math.sqrt(2.0) * (1.0 + 1e-12), math.sqrt(2.0) * (1.0 + 1e-10)])
+def test_just_above_k_branch_the_three_curves_agree_on_the_junction(k):
+    # 5e-13 above k_branch the junction lies 4e-13 from the seed, where upsilon = 0 already: no
+    # crossing was located on dr_limit, which had no junction while dr_no_roll ended at one and
+    # rs_no_roll started there (found by an adversarial helper); the seed is now marked too
+    bs = trace_boundaries(k)
+    assert bs.ok, bs.failures
+    junctions = {name: [p.x for p in curve.special_points if p.kind.value == "junction"]
+                 for name, curve in bs.curves.items()}
+    if "dr_no_roll" not in bs.curves:
+        assert junctions["dr_limit"] == [] and junctions["rs_no_roll"] == []
+        return
+    assert bs.curves["dr_no_roll"].end is Where.JUNCTION
+    assert len(junctions["dr_limit"]) == len(junctions["rs_no_roll"]) == 1
+    for x in (junctions["dr_limit"][0], junctions["rs_no_roll"][0]):
+        assert np.max(np.abs(x - junctions["dr_no_roll"][-1])) <= 1e-9

@@ -170,7 +170,7 @@ JUNCTION_TOLERANCE = 1e-5
 
 
 def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
-                    junction) -> tuple[tuple, str]:
+                    junction, expected: int | None) -> tuple[tuple, str]:
     """The junction mark of the limit curve, at the junction found on ``dr_no_roll``.
 
     ``upsilon = 0`` on the limit curve is located as an event, but next to ``k_branch`` it is
@@ -178,19 +178,42 @@ def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
     ``k = k_branch``), so that point is only accurate to ``event_tol / |k - k_branch|``; the
     same junction is where ``dr_no_roll`` reaches ``T/N_L = k``, which it crosses transversally
     for every ``k``. The event's point is replaced by that one; the two must agree to
-    :data:`JUNCTION_TOLERANCE`. Returns the marks for :func:`assemble` and a problem, if any.
+    :data:`JUNCTION_TOLERANCE`. Within rounding of ``k_branch`` the junction may lie within
+    :data:`SEED_JUNCTION` of the seed, where ``upsilon = 0`` already: no crossing is located, and
+    the seed is marked as the junction too, so that the three curves that meet there agree.
+    A crossing without a junction on ``dr_no_roll`` (where one is not ``expected``: ``0``; ``None``
+    near a threshold, where either is accepted), or a junction on ``dr_no_roll`` with no crossing
+    away from the seed, is a problem. Returns the marks for :func:`assemble` and the problem.
     """
     crossings = [p for p in limit.special_points if p.kind is SpecialKind.EVENT
                  and tagged[cast(int, p.event)].role is Role.NO_ROLL and p.index > 0]
-    if not crossings or junction is None:
+    note = "meets dr_no_roll and rs_no_roll (upsilon = 0)"
+    if junction is None:
+        if crossings and expected is not None:
+            where = tuple(system.to_x(limit.x[crossings[0].index]))
+            return (), (f"upsilon = 0 on dr_limit at {where}, but dr_no_roll has no junction: the "
+                        "junction is not consistent")
         return (), ""
+    if not crossings:
+        seed = system.to_x(limit.x[0])
+        distance = float(np.max(np.abs(seed - junction)))
+        if distance <= SEED_JUNCTION:
+            return ((0, f"{note}, within {distance:.2g} of the seed", seed),), ""
+        return (), (f"dr_no_roll ends at a junction {tuple(junction)}, {distance:.3g} from the "
+                    "seed, but upsilon = 0 is not crossed on dr_limit: the junction is not "
+                    "consistent")
     index = crossings[0].index
     distance = float(np.max(np.abs(system.to_x(limit.x[index]) - junction)))
     problem = "" if distance <= JUNCTION_TOLERANCE else (
         f"upsilon = 0 on dr_limit at {tuple(system.to_x(limit.x[index]))} is {distance:.3g} from "
         f"the end of dr_no_roll at {tuple(junction)}, where T/N_L = k: the junction is not "
         "consistent")
-    return ((index, "meets dr_no_roll and rs_no_roll (upsilon = 0)", junction),), problem
+    return ((index, note, junction),), problem
+
+
+#: largest distance of a junction from the seed at which no crossing of upsilon = 0 is located
+#: on the limit curve (upsilon vanishes at the seed): about that far within rounding of k_branch
+SEED_JUNCTION = 1e-9
 
 
 #: the direction every boundary starts in: into delta > 0
@@ -250,8 +273,9 @@ class _Job:
         return {}, [f"dr_no_roll has no physical part for k = {k_text(params.k)}: "
                     "T/N_L > k all along it"], junction
 
-    def limit(self, junction) -> dict:
-        """``dr_limit`` and ``rs_limit`` from ``(arctan(k/c), 0)`` into ``delta > 0``.
+    def limit(self, junction, expected: int | None) -> dict:
+        """``dr_limit`` and ``rs_limit`` from ``(arctan(k/c), 0)`` into ``delta > 0``; the
+        junctions ``expected`` on ``dr_limit`` (:func:`_limit_junction`).
 
         One trace in the conditioned form of the limit curve, reported as ``dr_limit`` (with
         the junction where ``upsilon = 0``) and as ``rs_limit``; each is then checked against
@@ -266,7 +290,7 @@ class _Job:
         self.traced["dr_limit"] = self.traced["rs_limit"] = (system, tagged)
         engine = trace_curve(system, system.from_x(self.seed), _UP, self.options, tagged)
         note = "seed (arctan(k/c), 0): T/N = c tan gamma = k on delta = 0"
-        marks, problem = _limit_junction(system, engine, tagged, junction)
+        marks, problem = _limit_junction(system, engine, tagged, junction, expected)
         dr = assemble("dr_limit", system, engine, tagged, self.keep_unphysical, Where.SEED,
                       note, marks)
         rs_system = BoundarySystem("rs_limit", params, "sqrt_beta_L", scale, conditioned=True)
@@ -370,7 +394,7 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
                                        f"{k_text(params.k)}: T/N_L > k all along it"], None
     else:
         curves, notes, junction = job.dr_no_roll(expected["dr_no_roll"].present)
-    curves.update(job.limit(junction))
+    curves.update(job.limit(junction, expected["dr_limit"].junctions))
     from_seed = expected["rs_no_roll"].start == Where.SEED.value
     curves["rs_no_roll"] = job.rs_no_roll(None if from_seed else junction)
     if keep_unphysical and not from_seed:
