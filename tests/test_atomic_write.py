@@ -257,3 +257,79 @@ def test_temporary_file_has_the_permissions_of_an_ordinary_open(tmp_path):
     finally:
         os.umask(umask)
     assert (tmp_path / "x.csv").stat().st_mode & 0o777 == 0o640
+
+
+def _writer(text):
+    return lambda tmp: Path(tmp).write_text(text)
+
+
+@pytest.mark.parametrize("failing", [2, 3])
+def test_a_group_whose_later_move_fails_is_put_back_as_it_was(failing, tmp_path, monkeypatch):
+    # the moves come one by one: a failure after the first (a target owned by someone else in
+    # a sticky directory, an immutable file) left the group half replaced
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    (tmp_path / "a.csv").write_text("old a")
+    (tmp_path / "c.csv").write_text("old c")  # b.csv is new
+    real, calls = os.replace, []
+
+    def replace(src, dst):
+        calls.append(Path(dst).name)
+        if len(calls) == failing:
+            raise PermissionError(1, "Operation not permitted")
+        return real(src, dst)
+
+    monkeypatch.setattr(os, "replace", replace)
+    with pytest.raises(WriteError):
+        atomic_write_all([(tmp_path / name, _writer(f"new {name}"))
+                          for name in ("a.csv", "b.csv", "c.csv")])
+    monkeypatch.setattr(os, "replace", real)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "c.csv"]  # no temporaries
+    assert (tmp_path / "a.csv").read_text() == "old a"
+    assert (tmp_path / "c.csv").read_text() == "old c"
+
+
+def test_ctrl_c_during_the_moves_comes_after_the_whole_group(tmp_path, monkeypatch):
+    import signal
+
+    from groove_model.io.atomic import atomic_write_all
+
+    real, calls = os.replace, []
+
+    def replace(src, dst):
+        calls.append(Path(dst).name)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)  # held until the group is in place
+        return real(src, dst)
+
+    monkeypatch.setattr(os, "replace", replace)
+    with pytest.raises(KeyboardInterrupt):
+        atomic_write_all([(tmp_path / name, _writer(name)) for name in ("a.csv", "b.csv")])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+
+
+def test_a_sweep_on_a_full_disk_leaves_no_temporary(tmp_path, monkeypatch):
+    # closing a temporary flushes its buffer, which failed again on the full disk and skipped
+    # the removal of the temporaries and the message naming the file
+    import errno
+
+    from groove_model.io import sweep as sweep_io
+    from groove_model.io.atomic import WriteError
+
+    class Full:
+        def __init__(self, handle):
+            self.handle = handle
+
+        def write(self, text):
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+        def close(self):
+            self.handle.close()
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(sweep_io, "open", lambda *a, **k: Full(open(*a, **k)), raising=False)
+    from groove_model.tracing import sweep_results
+
+    with pytest.raises(WriteError, match=r"cannot write .*sweep_boundaries\.csv: No space"):
+        sweep_io.write_sweep(sweep_results([1.0]), tmp_path)
+    assert list(tmp_path.iterdir()) == []

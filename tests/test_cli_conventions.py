@@ -262,25 +262,38 @@ def test_an_unwritable_out_directory_is_refused_before_anything_is_computed(tmp_
      "atlas_junction.csv"),
 ])
 def test_a_directory_in_a_files_place_leaves_every_file_of_the_group_as_it_was(
-        argv, blocked, untouched, tmp_path, capsys):
+        argv, blocked, untouched, tmp_path, monkeypatch, capsys):
     (tmp_path / blocked).mkdir()
     (tmp_path / untouched).write_text("old")
     argv = [a.replace("DIR", str(tmp_path)) for a in argv]
-    assert main(argv) == 1
+    monkeypatch.setattr("groove_model.tracing.sweep.trace_boundaries",
+                        lambda *a, **k: pytest.fail("traced before the files were checked"))
+    with pytest.raises(SystemExit) as exit_info:  # seen at the start: bad input
+        main(argv)
+    assert exit_info.value.code == 2
     err = capsys.readouterr().err
-    assert f"cannot write {tmp_path / blocked}: a directory is in its place" in err
-    assert ".partial-" not in err  # the file's name, not its temporary's
+    assert f"{tmp_path / blocked} is a directory, in the place of an output file" in err
     assert (tmp_path / untouched).read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([blocked, untouched])
 
 
-def test_a_sweep_whose_file_is_blocked_fails_before_tracing(tmp_path, monkeypatch, capsys):
-    (tmp_path / "sweep_boundaries.csv").mkdir()
-    monkeypatch.setattr("groove_model.tracing.sweep.trace_boundaries",
+@pytest.mark.parametrize("argv, blocked", [
+    (["trace", "-k", "1", "10", "--out", "DIR"], "boundaries_k1_k10.svg"),
+    (["map", "-k", "1", "-o", "DIR/m.png", "--svg", "--no-boundaries"], "m.svg"),
+    (["atlas", "--k-min", "1", "--k-max", "2", "--out", "DIR"], "atlas.png"),
+])
+def test_a_directory_in_the_place_of_a_later_file_is_refused_before_computing(
+        argv, blocked, tmp_path, monkeypatch, capsys):
+    # the figure is written after the CSVs: a directory in its place was found only then,
+    # with the CSVs (or the PNG) already replaced
+    (tmp_path / blocked).mkdir()
+    monkeypatch.setattr("groove_model.tracing.trace_boundaries",
                         lambda *a, **k: pytest.fail("traced before the files were checked"))
-    assert main(["sweep", "--k-min", "1", "--k-max", "2", "-n", "2", "--out",
-                 str(tmp_path)]) == 1
-    assert "a directory is in its place" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as exit_info:
+        main([a.replace("DIR", str(tmp_path)) for a in argv])
+    assert exit_info.value.code == 2
+    assert f"{tmp_path / blocked} is a directory" in capsys.readouterr().err
+    assert [p.name for p in tmp_path.iterdir()] == [blocked]
 
 
 def test_a_figure_goes_into_a_new_directory_as_out_does(tmp_path, capsys):
@@ -315,3 +328,49 @@ def test_a_directory_given_as_the_figure_is_refused(tmp_path, capsys):
         main(["map", "-k", "1", "-o", str(tmp_path / "d.png"), "--no-boundaries"])
     assert exit_info.value.code == 2
     assert "is a directory; give a file name" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv", [
+    ["trace", "-k", "1", "--out", "DIR/link"],
+    ["trace", "-k", "1", "--out", "DIR/link/sub"],
+    ["map", "-k", "1", "-o", "DIR/link/m.png", "--no-boundaries"],
+])
+def test_a_link_to_nothing_as_the_output_directory_is_named(argv, tmp_path, capsys):
+    # it read "[Errno 17] File exists", after tracing
+    (tmp_path / "link").symlink_to(tmp_path / "nowhere")
+    with pytest.raises(SystemExit) as exit_info:
+        main([a.replace("DIR", str(tmp_path)) for a in argv])
+    assert exit_info.value.code == 2
+    assert f"{tmp_path / 'link'} is a link to {tmp_path / 'nowhere'}, which does not exist" in \
+        capsys.readouterr().err
+
+
+def test_ctrl_c_while_the_commands_load_is_a_line_not_a_traceback(monkeypatch, capsys):
+    main_module = sys.modules[main.__module__]  # the module (its package exports main itself)
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(main_module, "build_parser", interrupted)
+    assert main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1"]) == 130
+    assert capsys.readouterr().err == "groove: interrupted\n"
+
+
+def test_a_k_whose_files_cannot_be_written_does_not_stop_the_others(tmp_path, monkeypatch,
+                                                                      capsys):
+    from groove_model.io import export
+    from groove_model.io.atomic import WriteError
+
+    real = export.write_boundary_set
+
+    def full_for_k1(boundary_set, directory, suffix=""):
+        if boundary_set.k == 1.0:
+            raise WriteError(28, "cannot write boundaries_k1.csv: No space left on device")
+        return real(boundary_set, directory, suffix)
+
+    monkeypatch.setattr(export, "write_boundary_set", full_for_k1)
+    assert main(["trace", "-k", "1", "10", "--out", str(tmp_path), "--no-figure"]) == 1
+    err = capsys.readouterr().err
+    assert "k = 1: cannot write boundaries_k1.csv: No space left on device" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["boundaries_k10.csv",
+                                                          "special_points_k10.csv"]

@@ -114,7 +114,7 @@ def test_trace_command_writes_the_k_that_succeeded(tmp_path, monkeypatch, capsys
     assert main(["trace", "-k", "1", "3", "0.5", "--out", str(tmp_path)]) == 1
     captured = capsys.readouterr()
     assert "k = 3: rs_no_roll: the step size fell below its minimum" in captured.err
-    assert "no overlay: the boundaries of k = 3 failed" in captured.err
+    assert "no overlay: k = 3 failed or could not be written" in captured.err
     assert sorted(p.name for p in tmp_path.iterdir()) == [
         "boundaries_k0.5.csv", "boundaries_k1.csv", "special_points_k0.5.csv",
         "special_points_k1.csv"]
@@ -371,11 +371,14 @@ def test_trace_refuses_a_figure_name_in_a_format_it_does_not_write(tmp_path, cap
 def test_a_file_that_cannot_be_written_is_named_and_its_pair_is_not_written(tmp_path, capsys):
     # a directory in the way of special_points_k1.csv: boundaries_k1.csv was written alone,
     # and the message named the hidden temporary file with exit code 2 (a usage error)
+    # (now seen before anything is traced: bad input, exit code 2)
     out = tmp_path / "out"
     (out / "special_points_k1.csv").mkdir(parents=True)
-    assert main(["trace", "-k", "1", "--out", str(out), "--no-figure"]) == 1
+    with pytest.raises(SystemExit) as exit_info:
+        main(["trace", "-k", "1", "--out", str(out), "--no-figure"])
+    assert exit_info.value.code == 2
     err = capsys.readouterr().err
-    assert f"cannot write {out / 'special_points_k1.csv'}: it exists and is not a file" in err
+    assert f"{out / 'special_points_k1.csv'} is a directory, in the place of an output file" in err
     assert sorted(p.name for p in out.iterdir()) == ["special_points_k1.csv"]
 
 

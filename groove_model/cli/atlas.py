@@ -14,6 +14,7 @@ from .common import (
     compliance_label,
     computation_errors,
     output_directory,
+    refuse_blocked,
     require_plotting,
     traced_friction,
 )
@@ -71,6 +72,10 @@ def run(args) -> int:
                          f"{k_text(args.k_max)}")
     out = output_directory(args.out)
     compliance = compliance_from(args)
+    stem = "atlas" + compliance_label(compliance)
+    figures = () if args.no_figure else ("png", "svg") if args.svg else ("png",)
+    refuse_blocked([*(out / f"{stem}_{name}.csv" for name in (*STANDARD_CURVES, "thresholds")),
+                    out / f"{stem}.md", *(out / f"{stem}.{fmt}" for fmt in figures)])
     if not args.no_figure:
         require_plotting()
     try:
@@ -84,8 +89,13 @@ def run(args) -> int:
             print(f"groove atlas: error: {failure}", file=sys.stderr)
         print("groove atlas: nothing written: a curve failed (see above)", file=sys.stderr)
         return EXIT_FAILED
-    stem = "atlas" + compliance_label(compliance)
-    paths = write_atlas(atlas, out, stem)
+    figure = []
+    if not args.no_figure:
+        # Imported here: matplotlib is needed for the figure only.
+        from ..plots.atlas import atlas_figure_files
+
+        figure = atlas_figure_files(atlas, out / stem, figures)
+    paths = write_atlas(atlas, out, stem, figure)  # the CSVs, the report and the figure: one group
     print(f"atlas for k in [{args.k_min:g}, {args.k_max:g}], c = {compliance.ratio:.6g}: "
           f"{len(atlas.curves)} curves, {sum(len(c.p) for c in atlas.curves.values())} points "
           f"in {atlas.seconds:.2f} s")
@@ -97,11 +107,6 @@ def run(args) -> int:
     absent = [name for name in STANDARD_CURVES if name not in atlas.curves]
     if absent:
         print(f"  not in this range (files with no rows): {', '.join(absent)}")
-    if not args.no_figure:
-        # Imported here: matplotlib is needed for the figure only.
-        from ..plots.atlas import save_atlas_figure
-
-        paths += save_atlas_figure(atlas, out / stem, ("png", "svg") if args.svg else ("png",))
     for path in paths:
         print(f"wrote {path}")
     return EXIT_OK

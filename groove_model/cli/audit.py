@@ -14,6 +14,7 @@ from .common import (
     add_friction,
     computation_errors,
     output_directory,
+    refuse_blocked,
 )
 
 __all__ = ["add_parser", "run"]
@@ -65,6 +66,8 @@ def run(args) -> int:
 
     ks = tuple(args.ks) if args.ks else DEFAULT_KS
     out = output_directory(args.out) if args.out else None
+    if out is not None:
+        refuse_blocked([out / "claims.md", out / "claims.json"])
     try:
         report = run_audit(ks, use_tracer=args.trace)
     except computation_errors() as exc:

@@ -49,6 +49,7 @@ __all__ = [
     "poisson",
     "positive_integer",
     "real",
+    "refuse_blocked",
     "require_certify_extra",
     "traced_friction",
     "traced_poisson",
@@ -261,6 +262,7 @@ def output_directory(text: str) -> Path:
         is not writable: checked before anything is computed.
     """
     out = Path(text)
+    _refuse_dangling_link("--out", out, out)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out {out} exists and is not a directory")
     existing = out if out.exists() else _existing_ancestor(out)
@@ -269,6 +271,26 @@ def output_directory(text: str) -> Path:
     if existing is not None and not os.access(existing, os.W_OK | os.X_OK):
         raise UsageError(f"--out {out} cannot be written: {existing} is not writable")
     return out
+
+
+def _refuse_dangling_link(option: str, directory: Path, given: Path) -> None:
+    """:class:`UsageError` if ``directory`` or a parent of it is a link to nothing (it could be
+    neither created nor written)."""
+    for path in (directory, *directory.parents):
+        if path.exists():
+            return
+        if path.is_symlink():
+            raise UsageError(f"{option} {given}: {path} is a link to {os.readlink(path)}, which "
+                             "does not exist")
+
+
+def refuse_blocked(paths) -> None:
+    """:class:`UsageError` if a directory stands where one of the output files ``paths`` is to
+    be written: seen before anything is computed, so it is bad input (exit code 2)."""
+    for path in map(Path, paths):
+        if path.is_dir():
+            raise UsageError(f"{path} is a directory, in the place of an output file: move it "
+                             "or write elsewhere")
 
 
 def _existing_ancestor(path: Path) -> Path | None:
@@ -298,7 +320,9 @@ def figure_target(text: str) -> tuple[Path, str]:
         raise UsageError(f"output format {target.suffix or '(none)'!r} of {target} is not one "
                          "of .png, .svg, .pdf")
     if target.is_dir():
-        raise UsageError(f"-o {target} is a directory; give a file name such as {target}/map.png")
+        raise UsageError(f"-o {target} is a directory; give a file name such as "
+                         f"{target / ('figure' + target.suffix)}")
+    _refuse_dangling_link("-o", target.parent, target)
     existing = target.parent if target.parent.exists() else _existing_ancestor(target.parent)
     if existing is not None and not existing.is_dir():
         raise UsageError(f"{existing} of {target} is a file, not a directory")

@@ -17,6 +17,7 @@ from .common import (
     figure_target,
     make_directory,
     one_friction,
+    refuse_blocked,
     require_plotting,
 )
 
@@ -91,6 +92,8 @@ def run(args) -> int:
     params = Parameters(k, compliance_from(args))
     target, fmt = figure_target(args.output)
     formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))
+    if args.svg:
+        refuse_blocked([target.with_suffix(".svg")])
     boundary_set = None
     try:
         if not args.no_boundaries:

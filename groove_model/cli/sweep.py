@@ -18,6 +18,7 @@ from .common import (
     compliance_label,
     output_directory,
     positive_integer,
+    refuse_blocked,
     require_certify_extra,
     traced_friction,
 )
@@ -153,9 +154,11 @@ def run(args) -> int:
                          f"{args.k_max!r} would all be that one k: give -n 1, or a wider range")
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
+    compliance = compliance_from(args)
+    refuse_blocked(out / f"sweep_{table}{compliance_label(compliance)}.csv"
+                   for table in ("boundaries", "special_points"))
     if args.certify:
         require_certify_extra()
-    compliance = compliance_from(args)
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
                             compliance=compliance, certify=args.certify)
     with _Termination(Progress(len(ks))).installed() as progress:

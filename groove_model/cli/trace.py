@@ -16,6 +16,7 @@ from .common import (
     compliance_from,
     compliance_label,
     output_directory,
+    refuse_blocked,
     require_certify_extra,
     require_plotting,
 )
@@ -96,7 +97,8 @@ def run(args) -> int:
     proven, its files written all the same), else 0."""
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
-    from ..io.export import write_boundary_set
+    from ..io.atomic import WriteError
+    from ..io.export import boundary_file_names, write_boundary_set
     from ..model.parameters import Parameters, k_text
     from ..tracing import trace_boundaries
 
@@ -116,6 +118,9 @@ def run(args) -> int:
         require_plotting()
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
+    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
+    refuse_blocked([*(out / f for k in args.ks for f in boundary_file_names(k, suffix)),
+                    *(() if args.no_figure else (out / f"{name}.png", out / f"{name}.svg"))])
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
@@ -127,8 +132,14 @@ def run(args) -> int:
                 print(f"groove trace: error: k = {k_text(k)}: {failure}", file=sys.stderr)
             print(f"groove trace: k = {k_text(k)}: nothing written for this k", file=sys.stderr)
             continue
+        try:
+            paths = write_boundary_set(result, out, suffix)
+        except WriteError as exc:  # e.g. a full disk: the other k are still traced and written
+            failed.append(k)
+            print(f"groove trace: error: k = {k_text(k)}: {exc.strerror}; nothing written for "
+                  "this k", file=sys.stderr)
+            continue
         sets.append(result)
-        paths = write_boundary_set(result, out, suffix)
         print(f"k = {k_text(result.k)}, c = {compliance.ratio!r}: "
               f"{', '.join(str(p) for p in paths)}; "
               f"{sum(len(c.x) for c in result.curves.values())} points, "
@@ -139,7 +150,6 @@ def run(args) -> int:
             if curve.certificate is not None:
                 print(f"  {curve.name}: {certificate_line(curve.certificate)}",
                       file=sys.stdout if curve.certified else sys.stderr)
-    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
     if failed or args.no_figure:
         # an overlay of this name from an earlier run would now sit beside newer CSVs
         for path in (out / f"{name}.{fmt}" for fmt in ("png", "svg")):
@@ -147,8 +157,8 @@ def run(args) -> int:
                 print(f"groove trace: note: {path} is from an earlier run (not redrawn)",
                       file=sys.stderr)
     if failed:
-        print(f"groove trace: no overlay: the boundaries of k = "
-              f"{', '.join(map(k_text, failed))} failed (see above)", file=sys.stderr)
+        print(f"groove trace: no overlay: k = {', '.join(map(k_text, failed))} failed or could "
+              "not be written (see above)", file=sys.stderr)
         return EXIT_FAILED
     if not args.no_figure:
         # Imported here: matplotlib is needed for the figure only (loaded by require_plotting).

@@ -52,12 +52,13 @@ def _csv(columns, rows, path: Path):
 STANDARD_CURVES = ("junction", "dr_limit_fold_delta", "rs_no_roll_fold_gamma")
 
 
-def write_atlas(atlas: Atlas, directory, stem: str = "atlas") -> list[Path]:
+def write_atlas(atlas: Atlas, directory, stem: str = "atlas", extra=()) -> list[Path]:
     """Write the CSV files and the report of ``atlas`` into ``directory`` (created if needed).
 
     One CSV per curve; a curve of :data:`STANDARD_CURVES` that does not exist in the range gets
-    a file with the header only. All are written before any is moved into place, so a failed
-    write (a full disk) leaves the files of an earlier run as they were.
+    a file with the header only. ``extra``: more ``(path, write)`` of the same result (its
+    figure). All are written before any is moved into place, so a failed write (a full disk)
+    leaves the files of an earlier run as they were.
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
@@ -69,7 +70,7 @@ def write_atlas(atlas: Atlas, directory, stem: str = "atlas") -> list[Path]:
     report = atlas_report(atlas)
     files.append((directory / f"{stem}.md",
                   lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
-    return atomic_write_all(files)
+    return atomic_write_all([*files, *extra])
 
 
 def _range_text(atlas: Atlas) -> str:

@@ -9,17 +9,20 @@ heavy, so that writing a file does not load pandas.
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import logging
 import os
 import re
 import secrets
+import signal
 import socket
+import threading
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["WriteError", "atomic_write", "atomic_write_all", "check_targets", "commit_temporary",
+__all__ = ["WriteError", "atomic_write", "atomic_write_all", "check_targets", "commit_all",
            "create_temporary", "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
@@ -214,8 +217,8 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
             remove_stale_temporaries(current.parent)
             temporaries.append((create_temporary(current), current))
             write(temporaries[-1][0])
-        for tmp, current in temporaries:
-            commit_temporary(tmp, current)
+        current = None
+        commit_all(temporaries)
     except BaseException as exc:
         for tmp, _ in temporaries:
             tmp.unlink(missing_ok=True)
@@ -225,12 +228,87 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
     return [path for _, path in temporaries]
 
 
-def commit_temporary(tmp: Path, path: Path) -> None:
-    """Sync the finished temporary file ``tmp`` to disk, move it to ``path`` and sync the
-    directory, so that neither a killed process nor a power loss leaves a truncated ``path``.
+@contextlib.contextmanager
+def _signals_deferred():
+    """Hold back SIGINT and SIGTERM until the block ends (main thread only, where Python runs
+    its signal handlers): a Ctrl-C between two moves of a group is recorded and delivered to
+    the handler it was meant for after the last move, not between them."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received: list[int] = []
+    held = [number for number in (signal.SIGINT, getattr(signal, "SIGTERM", None))
+            if number is not None]
+    previous = {number: signal.signal(number, lambda number, frame: received.append(number))
+                for number in held}
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+        for number in dict.fromkeys(received):
+            handler = previous[number]
+            if callable(handler):
+                handler(number, None)  # e.g. KeyboardInterrupt from Python's default
+            elif handler == signal.SIG_DFL:
+                os.kill(os.getpid(), number)
 
-    For writers that fill a file of :func:`create_temporary` themselves (e.g. a stream).
+
+def _keep_old(path: Path) -> Path | None:
+    """A hard link to the file at ``path`` under a temporary's name (removed as stale if its
+    writer dies), to put it back if a later move of its group fails; ``None`` if there is no
+    file there or it cannot be linked (a file system without hard links)."""
+    prefix = f".{path.stem[:120]}.partial-{os.getpid()}@{_owner()}."
+    for _ in range(100):
+        backup = path.with_name(f"{prefix}{secrets.token_hex(8)}{path.suffix}")
+        try:
+            os.link(path, backup, follow_symlinks=False)
+        except FileExistsError:
+            continue
+        except OSError:
+            return None
+        return backup
+    return None
+
+
+def commit_all(pairs: Sequence[tuple[Path, Path]]) -> None:
+    """Move each finished temporary onto its target, all of them or none.
+
+    The temporaries are synced first; the old files are kept as hard links (:func:`_keep_old`)
+    while the moves run back to back with Ctrl-C held (:func:`_signals_deferred`); if one move
+    fails, those before it are undone (the old files put back, new ones removed), so a group
+    of files (the two CSVs of a ``k``, a figure's formats) is never left half replaced. Then
+    the directories are synced. Where a file system cannot link, an old file that could not be
+    kept is moved over last, so that only a failure of its own move can leave it replaced.
+
+    Raises
+    ------
+    OSError
+        From the move that failed, after the undoing; the temporaries are left to the caller.
     """
-    _sync_file(tmp)
-    os.replace(tmp, path)
-    _sync_directory(path.parent)
+    for tmp, _ in pairs:
+        _sync_file(tmp)
+    with _signals_deferred():
+        kept = [(tmp, path, _keep_old(path) if path.exists() else None) for tmp, path in pairs]
+        # a target that has an old file which could not be kept goes last
+        kept.sort(key=lambda item: item[1].exists() and item[2] is None)
+        done: list[tuple[Path, Path | None, bool]] = []
+        try:
+            for tmp, path, backup in kept:
+                existed = backup is not None or path.exists()
+                os.replace(tmp, path)
+                done.append((path, backup, existed))
+        except BaseException:
+            for path, backup, existed in reversed(done):
+                if backup is not None:
+                    os.replace(backup, path)  # the old file back
+                elif not existed:
+                    path.unlink(missing_ok=True)  # there was none
+            raise
+        finally:
+            for _, _, backup in kept:
+                if backup is not None:
+                    backup.unlink(missing_ok=True)
+    for directory in dict.fromkeys(path.parent for _, path in pairs):
+        _sync_directory(directory)
+

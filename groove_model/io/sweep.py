@@ -6,6 +6,7 @@ number of ``k``; the files appear under their names only once every ``k`` has be
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
@@ -13,7 +14,7 @@ from ..tracing import SPECIAL_POINT_COLUMNS, SweepResult
 from .atomic import (
     WriteError,
     check_targets,
-    commit_temporary,
+    commit_all,
     create_temporary,
     remove_stale_temporaries,
 )
@@ -94,12 +95,12 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
                 name.unlink(missing_ok=True)
             return (), failed
         check_targets(targets)  # a directory made in a file's place while the sweep ran
-        for (_, name), current in zip(opened, targets, strict=True):
-            commit_temporary(name, current)
+        commit_all([(name, path) for (_, name), path in zip(opened, targets, strict=True)])
         return tuple(targets), failed
     except BaseException as exc:
         for handle, name in opened:
-            handle.close()
+            with contextlib.suppress(OSError):
+                handle.close()  # (flushing a full disk's buffer fails again)
             name.unlink(missing_ok=True)
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
             raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc

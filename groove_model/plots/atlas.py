@@ -18,10 +18,11 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.ticker import FuncFormatter
 
-from ..io.atomic import atomic_write
+from ..io.atomic import atomic_write_all
 from ..tracing.atlas import Atlas
 
-__all__ = ["CURVE_COLOURS", "draw_atlas", "save_atlas_figure", "save_compliance_figure"]
+__all__ = ["CURVE_COLOURS", "atlas_figure_files", "draw_atlas", "save_atlas_figure",
+           "save_compliance_figure"]
 
 # Okabe & Ito's colour-blind-safe palette.
 _PALETTE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
@@ -89,21 +90,28 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
     return handles
 
 
-def _save(fig: Figure, stem, formats) -> list[Path]:
-    """Write ``stem.<format>`` for each format; SVG deterministic (fixed hash salt, no date)."""
+def _files(fig: Figure, stem, formats) -> list:
+    """``(stem.<format>, write)`` for each format, for :func:`atomic_write_all`; the SVG the same
+    on every run (fixed hash salt, no date)."""
     stem = Path(stem)
-    paths = []
-    for fmt in formats:
-        path = stem.with_name(f"{stem.name}.{fmt}")
+
+    def write(tmp, fmt):
         with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-            paths.append(atomic_write(path, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=120, metadata={"Date": None} if f == "svg" else None)))
-    return paths
+            fig.savefig(tmp, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
+    return [(stem.with_name(f"{stem.name}.{fmt}"), lambda tmp, f=fmt: write(tmp, f))
+            for fmt in formats]
 
 
 def save_atlas_figure(atlas: Atlas, stem, formats=("png",), title: str | None = None
                       ) -> list[Path]:
-    """Write the figure of one atlas as ``stem.png`` (and the other ``formats``)."""
+    """Write the figure of one atlas as ``stem.png`` (and the other ``formats``), every format or
+    none."""
+    return atomic_write_all(atlas_figure_files(atlas, stem, formats, title))
+
+
+def atlas_figure_files(atlas: Atlas, stem, formats=("png",), title: str | None = None) -> list:
+    """The figure of one atlas as ``(path, write)`` for each format, to be written with other
+    files as one group (:func:`~groove_model.io.atomic.atomic_write_all`)."""
     # fixed margins: the constrained layout would cost more than the rest of `groove atlas`
     fig = Figure(figsize=(10.0, 7.0))
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.08, top=0.93, wspace=0.22, hspace=0.08)
@@ -111,7 +119,7 @@ def save_atlas_figure(atlas: Atlas, stem, formats=("png",), title: str | None = 
     handles = draw_atlas(axes, atlas)
     axes[0].legend(handles=handles, fontsize=7, loc="lower right")
     fig.suptitle(title or _default_title(atlas), fontsize=10)
-    return _save(fig, stem, formats)
+    return _files(fig, stem, formats)
 
 
 def _default_title(atlas: Atlas) -> str:
@@ -170,4 +178,4 @@ def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
     fig.suptitle("Special points for Mindlin's compliance c = 2(1 - \u03bd)/(2 - \u03bd): "
                  "in k for \u03bd = " + ", ".join(f"{nu:g}" for nu in in_k)
                  + " (thresholds as vertical lines), and in \u03bd at fixed k", fontsize=9)
-    return _save(fig, stem, formats)
+    return atomic_write_all(_files(fig, stem, formats))

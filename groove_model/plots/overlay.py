@@ -18,7 +18,7 @@ import matplotlib
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from ..io.export import atomic_write
+from ..io.atomic import atomic_write_all
 from ..model.parameters import Compliance, Parameters, k_text
 from ..tracing import BoundarySet
 from .labels import label_regions, region_label_positions
@@ -196,12 +196,13 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
     else:
         title = "; ".join(_key_text(key, True) for key in keys) + " (c: compliance ratio)"
     ax.set_title("Regime boundaries of a ball in a groove, " + title, fontsize=10)
-    written = []
+    files = []
     for fmt in formats:
         # the path as given for its own format (x.PNG stays x.PNG), the stem + suffix else
         own = path.suffix.lower() == f".{fmt}"
         target = path if own else stem.parent / f"{stem.name}.{fmt}"
-        with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-            written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
-    return written
+        files.append((target, lambda tmp, f=fmt: fig.savefig(
+            tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
+    # every format or none (one group); a fixed hash salt and no date: the same SVG every run
+    with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+        return atomic_write_all(files)

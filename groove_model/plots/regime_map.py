@@ -23,7 +23,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Polygon
 
 from ..analysis.regimes import CATEGORIES, CATEGORY_CODE, OUTSIDE, check_resolution, classify_cells
-from ..io.export import atomic_write
+from ..io.atomic import atomic_write_all
 from ..model.lines import dr_limit_no_roll_point
 from ..model.parameters import Parameters
 from ..tracing import trace_boundaries
@@ -362,12 +362,12 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     compliance = "" if params.c == 1.0 else f", compliance ratio c = {params.c:.4g}"
     ax.set_title(f"Regimes of a ball in a groove, friction coefficient k = {params.k:g}"
                  + compliance, fontsize=10)
-    written = []
+    files = []
     for fmt in formats:
         # the path as given for its own format (x.PNG stays x.PNG)
         target = path if path.suffix.lower() == "." + fmt else path.with_suffix("." + fmt)
-        # A fixed hash salt and no date make the SVG the same on every run.
-        with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-            written.append(atomic_write(target, lambda tmp, f=fmt: fig.savefig(
-                tmp, format=f, dpi=dpi, metadata={"Date": None} if f == "svg" else None)))
-    return written
+        files.append((target, lambda tmp, f=fmt: fig.savefig(
+            tmp, format=f, dpi=dpi, metadata={"Date": None} if f == "svg" else None)))
+    # every format or none (one group); a fixed hash salt and no date: the same SVG every run
+    with matplotlib.rc_context({"svg.hashsalt": "groove"}):
+        return atomic_write_all(files)
