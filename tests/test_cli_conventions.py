@@ -374,3 +374,25 @@ def test_a_k_whose_files_cannot_be_written_does_not_stop_the_others(tmp_path, mo
     assert "k = 1: cannot write boundaries_k1.csv: No space left on device" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["boundaries_k10.csv",
                                                           "special_points_k10.csv"]
+
+
+def test_reproduce_refuses_a_file_where_its_compliance_directory_goes_before_any_step(
+        tmp_path, monkeypatch, capsys):
+    # it ran trace, map and atlas (rewriting their files) before compliance refused
+    (tmp_path / "compliance").write_text("a file")
+    monkeypatch.setattr("groove_model.tracing.trace_boundaries",
+                        lambda *a, **k: pytest.fail("a step ran before the check"))
+    with pytest.raises(SystemExit) as exit_info:
+        main(["reproduce", "--out", str(tmp_path)])
+    assert exit_info.value.code == 2
+    assert "compliance exists and is not a directory" in capsys.readouterr().err
+    assert [p.name for p in tmp_path.iterdir()] == ["compliance"]
+
+
+def test_compliance_refuses_a_directory_in_the_place_of_its_report(tmp_path, capsys):
+    (tmp_path / "compliance.md").mkdir()
+    with pytest.raises(SystemExit) as exit_info:
+        main(["compliance", "--poissons", "0", "-k", "1", "--out", str(tmp_path)])
+    assert exit_info.value.code == 2
+    assert f"{tmp_path / 'compliance.md'} is a directory" in capsys.readouterr().err
+    assert [p.name for p in tmp_path.iterdir()] == ["compliance.md"]

@@ -11,6 +11,7 @@ from .common import (
     add_command,
     computation_errors,
     output_directory,
+    refuse_blocked,
     require_plotting,
     traced_friction,
     traced_poisson,
@@ -53,12 +54,18 @@ def run(args) -> int:
     """Compute, write and print the comparison; 1 if a computation failed."""
     # Imported here, not at the top: the atlases load the engine, scipy and pandas.
     from ..analysis.compliance import compliance_study
-    from ..io.atlas import write_atlas
-    from ..io.atomic import atomic_write
+    from ..io.atlas import STANDARD_CURVES, atlas_files
+    from ..io.atomic import atomic_write_all
     from ..model.parameters import k_text
 
     out = output_directory(args.out)
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
+    stems = [*(f"atlas_nu{k_text(nu)}" for nu in dict.fromkeys(args.poissons)),
+             *(f"atlas_k{k_text(k)}_in_nu" for k in ks)]
+    refuse_blocked([*(out / f"{stem}_{name}.csv" for stem in stems
+                      for name in (*STANDARD_CURVES, "thresholds")),
+                    *(out / f"{stem}.md" for stem in stems), out / "compliance.md",
+                    *(() if args.no_figure else (out / "compliance.png", out / "compliance.svg"))])
     if not args.no_figure:
         require_plotting()
     try:
@@ -74,19 +81,20 @@ def run(args) -> int:
         print("groove compliance: nothing written: a curve failed", file=sys.stderr)
         return EXIT_FAILED
     out.mkdir(parents=True, exist_ok=True)
-    paths = []
+    files = []
     for nu, atlas in study.in_k.items():
-        paths += write_atlas(atlas, out, f"atlas_nu{k_text(nu)}")
+        files += atlas_files(atlas, out, f"atlas_nu{k_text(nu)}")
     for k, atlas in study.in_nu.items():
-        paths += write_atlas(atlas, out, f"atlas_k{k_text(k)}_in_nu")
+        files += atlas_files(atlas, out, f"atlas_k{k_text(k)}_in_nu")
     report = study.to_markdown()
-    paths.append(atomic_write(out / "compliance.md",
-                              lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
+    files.append((out / "compliance.md",
+                  lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
     if not args.no_figure:
         # Imported here: matplotlib is needed for the figure only.
-        from ..plots.atlas import save_compliance_figure
+        from ..plots.atlas import compliance_figure_files
 
-        paths += save_compliance_figure(study.in_k, study.in_nu, out / "compliance")
+        files += compliance_figure_files(study.in_k, study.in_nu, out / "compliance")
+    paths = atomic_write_all(files)  # every file of the comparison, or none
     print(report)
     print(f"computed in {study.seconds:.1f} s")
     for path in paths:

@@ -53,6 +53,7 @@ def steps(out: Path) -> tuple:
 def run(args, groove_parser) -> int:
     """Run each step; stop at the first that does not return 0 and return its exit code."""
     out = output_directory(args.out)
+    output_directory(str(out / "compliance"))  # the last steps' places, before the first runs
     out.mkdir(parents=True, exist_ok=True)
     for argv in steps(out):
         log.info("groove %s", " ".join(argv))

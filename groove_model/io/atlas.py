@@ -25,7 +25,7 @@ from .atomic import atomic_write_all
 if TYPE_CHECKING:  # reading back is the only use of pandas here
     import pandas as pd
 
-__all__ = ["STANDARD_CURVES", "atlas_report", "read_atlas_csv", "write_atlas"]
+__all__ = ["STANDARD_CURVES", "atlas_files", "atlas_report", "read_atlas_csv", "write_atlas"]
 
 
 def _cell(value) -> str:
@@ -62,6 +62,13 @@ def write_atlas(atlas: Atlas, directory, stem: str = "atlas", extra=()) -> list[
     """
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
+    return atomic_write_all([*atlas_files(atlas, directory, stem), *extra])
+
+
+def atlas_files(atlas: Atlas, directory, stem: str = "atlas") -> list:
+    """The files of :func:`write_atlas` as ``(path, write)``, to be written with others as one
+    group (:func:`~groove_model.io.atomic.atomic_write_all`)."""
+    directory = Path(directory)
     names = [*atlas.curves, *(n for n in STANDARD_CURVES if n not in atlas.curves)]
     files = [_csv(ATLAS_COLUMNS, atlas.curve_table(name) if name in atlas.curves else [],
                   directory / f"{stem}_{name}.csv") for name in names]
@@ -70,7 +77,7 @@ def write_atlas(atlas: Atlas, directory, stem: str = "atlas", extra=()) -> list[
     report = atlas_report(atlas)
     files.append((directory / f"{stem}.md",
                   lambda tmp: Path(tmp).write_text(report, encoding="utf-8")))
-    return atomic_write_all([*files, *extra])
+    return files
 
 
 def _range_text(atlas: Atlas) -> str:

@@ -21,8 +21,8 @@ from matplotlib.ticker import FuncFormatter
 from ..io.atomic import atomic_write_all
 from ..tracing.atlas import Atlas
 
-__all__ = ["CURVE_COLOURS", "atlas_figure_files", "draw_atlas", "save_atlas_figure",
-           "save_compliance_figure"]
+__all__ = ["CURVE_COLOURS", "atlas_figure_files", "compliance_figure_files", "draw_atlas",
+           "save_atlas_figure", "save_compliance_figure"]
 
 # Okabe & Ito's colour-blind-safe palette.
 _PALETTE = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000")
@@ -132,8 +132,14 @@ def _default_title(atlas: Atlas) -> str:
 
 def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
                            ) -> list[Path]:
+    """Write :func:`compliance_figure_files`, every format or none."""
+    return atomic_write_all(compliance_figure_files(in_k, in_nu, stem, formats))
+
+
+def compliance_figure_files(in_k: dict, in_nu: dict, stem, formats=("png", "svg")) -> list:
     """The atlases in ``k`` for several ``nu`` (``{nu: Atlas}``, one line style each) over the
-    atlases in ``nu`` at fixed ``k`` (``{k: Atlas}``), ``gamma`` and ``delta`` only."""
+    atlases in ``nu`` at fixed ``k`` (``{k: Atlas}``), ``gamma`` and ``delta`` only, as
+    ``(path, write)`` for each format."""
     # the atlases in nu get one panel each in the second row (every k given is drawn)
     columns = max(2, len(in_nu))
     fig = Figure(figsize=(5.5 * columns, 8.0))
@@ -178,4 +184,4 @@ def save_compliance_figure(in_k: dict, in_nu: dict, stem, formats=("png", "svg")
     fig.suptitle("Special points for Mindlin's compliance c = 2(1 - \u03bd)/(2 - \u03bd): "
                  "in k for \u03bd = " + ", ".join(f"{nu:g}" for nu in in_k)
                  + " (thresholds as vertical lines), and in \u03bd at fixed k", fontsize=9)
-    return atomic_write_all(_files(fig, stem, formats))
+    return _files(fig, stem, formats)
