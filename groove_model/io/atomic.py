@@ -18,7 +18,7 @@ import secrets
 import signal
 import socket
 import threading
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -229,7 +229,7 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
 
 
 @contextlib.contextmanager
-def _signals_deferred():
+def _signals_deferred() -> Iterator[None]:
     """Hold back SIGINT and SIGTERM until the block ends (main thread only, where Python runs
     its signal handlers): a Ctrl-C between two moves of a group is recorded and delivered to
     the handler it was meant for after the last move, not between them."""
