@@ -289,9 +289,10 @@ def test_a_group_whose_later_move_fails_is_put_back_as_it_was(failing, tmp_path,
     assert (tmp_path / "c.csv").read_text() == "old c"
 
 
-def test_ctrl_c_during_the_moves_comes_after_the_whole_group(tmp_path, monkeypatch):
-    import signal
-
+@pytest.mark.parametrize("handler", [signal.default_int_handler, signal.SIG_IGN])
+def test_ctrl_c_during_the_moves_comes_after_the_whole_group(handler, tmp_path, monkeypatch):
+    # the handler is set here: a process started in the background of a shell without job
+    # control inherits SIGINT ignored, and Ctrl-C must then stay ignored after the group
     from groove_model.io.atomic import atomic_write_all
 
     real, calls = os.replace, []
@@ -302,9 +303,17 @@ def test_ctrl_c_during_the_moves_comes_after_the_whole_group(tmp_path, monkeypat
             os.kill(os.getpid(), signal.SIGINT)  # held until the group is in place
         return real(src, dst)
 
-    monkeypatch.setattr(os, "replace", replace)
-    with pytest.raises(KeyboardInterrupt):
-        atomic_write_all([(tmp_path / name, _writer(name)) for name in ("a.csv", "b.csv")])
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        monkeypatch.setattr(os, "replace", replace)
+        files = [(tmp_path / name, _writer(name)) for name in ("a.csv", "b.csv")]
+        if handler is signal.SIG_IGN:
+            atomic_write_all(files)
+        else:
+            with pytest.raises(KeyboardInterrupt):
+                atomic_write_all(files)
+    finally:
+        signal.signal(signal.SIGINT, previous)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
 
 
