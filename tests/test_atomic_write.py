@@ -342,3 +342,14 @@ def test_a_sweep_on_a_full_disk_leaves_no_temporary(tmp_path, monkeypatch):
     with pytest.raises(WriteError, match=r"cannot write .*sweep_boundaries\.csv: No space"):
         sweep_io.write_sweep(sweep_results([1.0]), tmp_path)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_file_made_read_only_stays_read_only_when_replaced(tmp_path):
+    from groove_model.io.atomic import atomic_write_all
+
+    target = tmp_path / "a.csv"
+    target.write_text("old")
+    target.chmod(0o444)
+    atomic_write_all([(target, _writer("new"))])
+    assert target.read_text() == "new"
+    assert target.stat().st_mode & 0o777 == 0o444

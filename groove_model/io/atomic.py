@@ -17,6 +17,7 @@ import re
 import secrets
 import signal
 import socket
+import stat
 import threading
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
@@ -271,23 +272,36 @@ def _keep_old(path: Path) -> Path | None:
     return None
 
 
+def _keep_mode(path: Path, tmp: Path) -> None:
+    """Give ``tmp`` the permissions of the file it replaces (a file made read-only stays so),
+    where there is one and they can be set."""
+    try:
+        mode = path.stat().st_mode
+        if stat.S_ISREG(mode):
+            os.chmod(tmp, stat.S_IMODE(mode))
+    except OSError:
+        pass
+
+
 def commit_all(pairs: Sequence[tuple[Path, Path]]) -> None:
     """Move each finished temporary onto its target, all of them or none.
 
-    The temporaries are synced first; the old files are kept as hard links (:func:`_keep_old`)
-    while the moves run back to back with Ctrl-C held (:func:`_signals_deferred`); if one move
-    fails, those before it are undone (the old files put back, new ones removed), so a group
-    of files (the two CSVs of a ``k``, a figure's formats) is never left half replaced. Then
-    the directories are synced. Where a file system cannot link, an old file that could not be
-    kept is moved over last, so that only a failure of its own move can leave it replaced.
+    The temporaries are synced first and given the permissions of the files they replace; the
+    old files are kept as hard links (:func:`_keep_old`) while the moves run back to back with
+    Ctrl-C held (:func:`_signals_deferred`); if one move fails, those before it are undone (the
+    old files put back, new ones removed), so a group of files (the two CSVs of a ``k``, a
+    figure's formats) is never left half replaced. Then the directories are synced. Where a
+    file system cannot link, an old file that could not be kept is moved over last, so that
+    only a failure of its own move can leave it replaced.
 
     Raises
     ------
     OSError
         From the move that failed, after the undoing; the temporaries are left to the caller.
     """
-    for tmp, _ in pairs:
+    for tmp, path in pairs:
         _sync_file(tmp)
+        _keep_mode(path, tmp)
     with _signals_deferred():
         kept = [(tmp, path, _keep_old(path) if path.exists() else None) for tmp, path in pairs]
         # a target that has an old file which could not be kept goes last
