@@ -353,3 +353,107 @@ def test_a_file_made_read_only_stays_read_only_when_replaced(tmp_path):
     atomic_write_all([(target, _writer("new"))])
     assert target.read_text() == "new"
     assert target.stat().st_mode & 0o777 == 0o444
+
+
+def _failing(name, at, error=PermissionError(1, "Operation not permitted")):
+    """``name`` (an ``os`` function) that raises ``error`` at its ``at``-th call (1-based)."""
+    real, calls = getattr(os, name), []
+
+    def function(*args, **kwargs):
+        calls.append(args)
+        if len(calls) in at:
+            raise error
+        return real(*args, **kwargs)
+    return function
+
+
+def test_a_failed_move_names_its_file(tmp_path, monkeypatch):
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    monkeypatch.setattr(os, "replace", _failing("replace", {2}))
+    with pytest.raises(WriteError, match=r"cannot write .*b\.csv: Operation not permitted"):
+        atomic_write_all([(tmp_path / n, _writer(n)) for n in ("a.csv", "b.csv")])
+
+
+def test_an_undo_that_fails_keeps_that_old_file_and_puts_back_the_others(tmp_path, monkeypatch,
+                                                                           caplog):
+    # the move of c fails, then putting b back fails: a was not put back and every backup was
+    # removed, so the old a and b were lost
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    for name in ("a.csv", "b.csv", "c.csv"):
+        (tmp_path / name).write_text(f"old {name}")
+    monkeypatch.setattr(os, "replace", _failing("replace", {3, 4}))  # c, then b back
+    with pytest.raises(WriteError):
+        atomic_write_all([(tmp_path / n, _writer(f"new {n}")) for n in ("a.csv", "b.csv", "c.csv")])
+    assert (tmp_path / "a.csv").read_text() == "old a.csv"
+    assert (tmp_path / "c.csv").read_text() == "old c.csv"
+    assert (tmp_path / "b.csv").read_text() == "new b.csv"
+    kept = [p for p in tmp_path.iterdir() if p.name.startswith(".b.partial-")]
+    assert len(kept) == 1 and kept[0].read_text() == "old b.csv"
+    assert str(kept[0]) in caplog.text
+
+
+def test_without_hard_links_a_group_is_still_all_or_none(tmp_path, monkeypatch):
+    # (vfat, exFAT, some network file systems) the old files are kept as copies
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    for name in ("a.csv", "b.csv"):
+        (tmp_path / name).write_text(f"old {name}")
+    monkeypatch.setattr(os, "link", _failing("link", set(range(1, 1000))))
+    monkeypatch.setattr(os, "replace", _failing("replace", {2}))
+    with pytest.raises(WriteError):
+        atomic_write_all([(tmp_path / n, _writer(f"new {n}")) for n in ("a.csv", "b.csv")])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+    assert [(tmp_path / n).read_text() for n in ("a.csv", "b.csv")] == ["old a.csv", "old b.csv"]
+
+
+def test_a_link_to_nothing_in_a_failed_group_is_put_back(tmp_path, monkeypatch):
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    (tmp_path / "a.csv").symlink_to(tmp_path / "nowhere")
+    monkeypatch.setattr(os, "replace", _failing("replace", {2}))
+    with pytest.raises(WriteError):
+        atomic_write_all([(tmp_path / n, _writer(n)) for n in ("a.csv", "b.csv")])
+    assert (tmp_path / "a.csv").is_symlink()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv"]
+
+
+def test_ctrl_c_and_sigterm_during_the_moves_both_reach_their_handlers(tmp_path, monkeypatch):
+    from groove_model.io.atomic import atomic_write_all
+
+    seen = []
+    real = os.replace
+
+    def replace(src, dst):
+        if not seen:
+            seen.append("moving")
+            os.kill(os.getpid(), signal.SIGINT)
+            os.kill(os.getpid(), signal.SIGTERM)
+        return real(src, dst)
+
+    # the SIGINT handler raising KeyboardInterrupt kept the SIGTERM handler from being called
+    previous = {signal.SIGINT: signal.signal(signal.SIGINT, signal.default_int_handler),
+                signal.SIGTERM: signal.signal(signal.SIGTERM, lambda n, f: seen.append(n))}
+    try:
+        monkeypatch.setattr(os, "replace", replace)
+        with pytest.raises(KeyboardInterrupt):
+            atomic_write_all([(tmp_path / n, _writer(n)) for n in ("a.csv", "b.csv")])
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+    assert seen == ["moving", signal.SIGTERM]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv", "b.csv"]
+
+
+def test_a_stale_backup_of_a_link_is_removed_and_only_the_link(tmp_path):
+    # a writer killed while it kept an old symbolic link (its backup is a link too) left a
+    # backup that the clean-up, which took regular files only, never removed
+    names = []
+    atomic_write(tmp_path / "probe.csv", lambda tmp: names.append(Path(tmp).name))
+    owner, gone = TEMPORARY.fullmatch(names[0])["owner"], dead_pid()
+    (tmp_path / "elsewhere.csv").write_text("the user's file")
+    stale = tmp_path / f".data.partial-{gone}@{owner}.0123456789abcdef.csv"
+    stale.symlink_to(tmp_path / "elsewhere.csv")
+    assert remove_stale_temporaries(tmp_path) == [stale]
+    assert (tmp_path / "elsewhere.csv").read_text() == "the user's file"

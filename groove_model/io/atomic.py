@@ -15,6 +15,7 @@ import logging
 import os
 import re
 import secrets
+import shutil
 import signal
 import socket
 import stat
@@ -97,7 +98,7 @@ def remove_stale_temporaries(directory) -> list[Path]:
         if pid == me or _process_exists(pid):
             continue
         try:
-            if not entry.is_file(follow_symlinks=False):
+            if not (entry.is_file(follow_symlinks=False) or entry.is_symlink()):
                 continue
             os.unlink(entry.path)
         except FileNotFoundError:
@@ -192,7 +193,11 @@ def check_targets(paths) -> None:
     anything is written keeps one that fails from leaving the files before it replaced.
     """
     for path in map(Path, paths):
-        if path.is_dir():
+        try:
+            blocked = path.is_dir()
+        except OSError as exc:  # e.g. a name too long for the file system
+            raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
+        if blocked:
             raise WriteError(errno.EISDIR, f"cannot write {path}: a directory is in its place")
 
 
@@ -232,14 +237,15 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
 @contextlib.contextmanager
 def _signals_deferred() -> Iterator[None]:
     """Hold back SIGINT and SIGTERM until the block ends (main thread only, where Python runs
-    its signal handlers): a Ctrl-C between two moves of a group is recorded and delivered to
-    the handler it was meant for after the last move, not between them."""
+    its signal handlers): a Ctrl-C between two moves of a group is recorded, and raised again
+    once the previous handlers are back, so that each is delivered as it would have been
+    (``KeyboardInterrupt``, a handler of the program's, ignored, or the default action)."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     received: list[int] = []
     held = [number for number in (signal.SIGINT, getattr(signal, "SIGTERM", None))
-            if number is not None]
+            if number is not None and signal.getsignal(number) is not None]
     previous = {number: signal.signal(number, lambda number, frame: received.append(number))
                 for number in held}
     try:
@@ -247,18 +253,25 @@ def _signals_deferred() -> Iterator[None]:
     finally:
         for number, handler in previous.items():
             signal.signal(number, handler)
-        for number in dict.fromkeys(received):
-            handler = previous[number]
-            if callable(handler):
-                handler(number, None)  # e.g. KeyboardInterrupt from Python's default
-            elif handler == signal.SIG_DFL:
-                os.kill(os.getpid(), number)
+        _deliver(list(dict.fromkeys(received)))
+
+
+def _deliver(numbers: list[int]) -> None:
+    """Raise each signal of ``numbers`` in this process, every one of them even when a handler
+    raises (``KeyboardInterrupt``): the next is raised in a ``finally``."""
+    if numbers:
+        try:
+            signal.raise_signal(numbers[0])
+        finally:
+            _deliver(numbers[1:])
 
 
 def _keep_old(path: Path) -> Path | None:
-    """A hard link to the file at ``path`` under a temporary's name (removed as stale if its
-    writer dies), to put it back if a later move of its group fails; ``None`` if there is no
-    file there or it cannot be linked (a file system without hard links)."""
+    """The file at ``path`` kept under a temporary's name (removed as stale if its writer dies),
+    to put it back if a later move of its group fails: a hard link, or a copy where the file
+    system has no hard links; ``None`` if there is nothing at ``path`` or it cannot be kept."""
+    if not os.path.lexists(path):
+        return None
     prefix = f".{path.stem[:120]}.partial-{os.getpid()}@{_owner()}."
     for _ in range(100):
         backup = path.with_name(f"{prefix}{secrets.token_hex(8)}{path.suffix}")
@@ -267,20 +280,47 @@ def _keep_old(path: Path) -> Path | None:
         except FileExistsError:
             continue
         except OSError:
-            return None
+            break
         return backup
-    return None
+    try:
+        backup = create_temporary(path)
+        shutil.copy2(path, backup, follow_symlinks=False)
+    except OSError:
+        with contextlib.suppress(OSError):
+            backup.unlink(missing_ok=True)
+        return None
+    return backup
 
 
 def _keep_mode(path: Path, tmp: Path) -> None:
     """Give ``tmp`` the permissions of the file it replaces (a file made read-only stays so),
     where there is one and they can be set."""
+    if os.name != "posix":
+        return  # on Windows a read-only file can be neither replaced nor removed
     try:
         mode = path.stat().st_mode
         if stat.S_ISREG(mode):
             os.chmod(tmp, stat.S_IMODE(mode))
     except OSError:
         pass
+
+
+def _undo(done: list[tuple[Path, Path | None, bool]]) -> set[Path]:
+    """Undo the moves ``done`` of a failed group, newest first: each old file put back from its
+    backup, each new file that had none removed. One that cannot be undone is logged with the
+    name of its backup, which is kept; the others are still undone. Returns those targets."""
+    lost = set()
+    for path, backup, existed in reversed(done):
+        try:
+            if backup is not None:
+                os.replace(backup, path)  # the old file back
+            elif not existed:
+                path.unlink(missing_ok=True)  # there was none
+        except OSError as exc:
+            lost.add(path)
+            logger.error("cannot put back the old %s after a failed write (%s); it is kept as %s",
+                         path, exc, backup)
+    return lost
 
 
 def commit_all(pairs: Sequence[tuple[Path, Path]]) -> None:
@@ -291,38 +331,46 @@ def commit_all(pairs: Sequence[tuple[Path, Path]]) -> None:
     Ctrl-C held (:func:`_signals_deferred`); if one move fails, those before it are undone (the
     old files put back, new ones removed), so a group of files (the two CSVs of a ``k``, a
     figure's formats) is never left half replaced. Then the directories are synced. Where a
-    file system cannot link, an old file that could not be kept is moved over last, so that
-    only a failure of its own move can leave it replaced.
+    file system cannot link, the old files are kept as copies; one that cannot be kept at all
+    is moved over last, so that only a failure of its own move can leave it replaced.
 
     Raises
     ------
-    OSError
-        From the move that failed, after the undoing; the temporaries are left to the caller.
+    WriteError
+        Naming the file whose sync or move failed, after the undoing; the temporaries are
+        removed.
     """
-    for tmp, path in pairs:
-        _sync_file(tmp)
-        _keep_mode(path, tmp)
-    with _signals_deferred():
-        kept = [(tmp, path, _keep_old(path) if path.exists() else None) for tmp, path in pairs]
-        # a target that has an old file which could not be kept goes last
-        kept.sort(key=lambda item: item[1].exists() and item[2] is None)
-        done: list[tuple[Path, Path | None, bool]] = []
-        try:
-            for tmp, path, backup in kept:
-                existed = backup is not None or path.exists()
-                os.replace(tmp, path)
-                done.append((path, backup, existed))
-        except BaseException:
-            for path, backup, existed in reversed(done):
-                if backup is not None:
-                    os.replace(backup, path)  # the old file back
-                elif not existed:
-                    path.unlink(missing_ok=True)  # there was none
+    path = None
+    kept: list[tuple[Path, Path, Path | None]] = []
+    done: list[tuple[Path, Path | None, bool]] = []
+    lost: set[Path] = set()
+    try:
+        for tmp, path in pairs:
+            _sync_file(tmp)
+            _keep_mode(path, tmp)
+        with _signals_deferred():
+            try:
+                for tmp, path in pairs:
+                    kept.append((tmp, path, _keep_old(path)))
+                # a target whose old file could not be kept goes last
+                kept.sort(key=lambda item: os.path.lexists(item[1]) and item[2] is None)
+                for tmp, path, backup in kept:
+                    existed = backup is not None or os.path.lexists(path)
+                    os.replace(tmp, path)
+                    done.append((path, backup, existed))
+            except BaseException:
+                lost = _undo(done)
+                for tmp, _ in pairs:
+                    tmp.unlink(missing_ok=True)  # (before a deferred SIGTERM ends the process)
+                raise
+            finally:
+                for _, target, backup in kept:
+                    if backup is not None and target not in lost:
+                        backup.unlink(missing_ok=True)
+    except OSError as exc:
+        if isinstance(exc, WriteError):
             raise
-        finally:
-            for _, _, backup in kept:
-                if backup is not None:
-                    backup.unlink(missing_ok=True)
+        raise WriteError(exc.errno, f"cannot write {path}: {exc.strerror or exc}") from exc
     for directory in dict.fromkeys(path.parent for _, path in pairs):
         _sync_directory(directory)
 

@@ -27,7 +27,11 @@ SWEEP_FILES = ("sweep_boundaries.csv", "sweep_special_points.csv")
 
 def _temporary(path: Path):
     name = create_temporary(path)
-    return open(name, "w", newline=""), name  # closed by write_sweep
+    try:
+        return open(name, "w", newline=""), name  # closed by write_sweep
+    except BaseException:
+        name.unlink(missing_ok=True)  # e.g. too many open files: not left behind
+        raise
 
 
 def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep",
