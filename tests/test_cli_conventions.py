@@ -396,3 +396,18 @@ def test_compliance_refuses_a_directory_in_the_place_of_its_report(tmp_path, cap
     assert exit_info.value.code == 2
     assert f"{tmp_path / 'compliance.md'} is a directory" in capsys.readouterr().err
     assert [p.name for p in tmp_path.iterdir()] == ["compliance.md"]
+
+
+@pytest.mark.parametrize("blocked", ["map_k1.svg", "claims.json", "compliance/compliance.md"])
+def test_reproduce_checks_every_steps_files_before_the_first_step(blocked, tmp_path,
+                                                                   monkeypatch, capsys):
+    # a directory in the place of a later step's file was found by that step, after trace (and
+    # the maps) had rewritten their files
+    (tmp_path / blocked).mkdir(parents=True)
+    monkeypatch.setattr("groove_model.tracing.trace_boundaries",
+                        lambda *a, **k: pytest.fail("a step ran before the check"))
+    with pytest.raises(SystemExit) as exit_info:
+        main(["reproduce", "--out", str(tmp_path)])
+    assert exit_info.value.code == 2
+    assert f"{tmp_path / blocked} is a directory, in the place of an output file" in \
+        capsys.readouterr().err

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from .common import (
     EXIT_FAILED,
@@ -55,8 +56,19 @@ def add_parser(subparsers):
     p.add_argument("--no-figure", action="store_true", help="write the CSVs and report only")
     p.add_argument("--svg", action="store_true", help="also write the figure as SVG")
     add_compliance_options(p)
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
+
+
+def outputs(args) -> list[Path]:
+    """The files ``groove atlas`` would write for ``args`` (a curve that is not one of the
+    standard three adds its own CSV, known only once traced)."""
+    from ..io.atlas import STANDARD_CURVES  # numpy: not at `groove --help`
+
+    out, stem = Path(args.out), "atlas" + compliance_label(compliance_from(args))
+    figures = () if args.no_figure else ("png", "svg") if args.svg else ("png",)
+    return [*(out / f"{stem}_{name}.csv" for name in (*STANDARD_CURVES, "thresholds")),
+            out / f"{stem}.md", *(out / f"{stem}.{fmt}" for fmt in figures)]
 
 
 def run(args) -> int:
@@ -74,8 +86,7 @@ def run(args) -> int:
     compliance = compliance_from(args)
     stem = "atlas" + compliance_label(compliance)
     figures = () if args.no_figure else ("png", "svg") if args.svg else ("png",)
-    refuse_blocked([*(out / f"{stem}_{name}.csv" for name in (*STANDARD_CURVES, "thresholds")),
-                    out / f"{stem}.md", *(out / f"{stem}.{fmt}" for fmt in figures)])
+    refuse_blocked(outputs(args))
     if not args.no_figure:
         require_plotting()
     try:

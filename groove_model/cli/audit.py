@@ -53,8 +53,13 @@ def add_parser(subparsers):
     p.add_argument("--json", action="store_true", help="print the report as JSON on stdout")
     p.add_argument("--trace", action="store_true",
                    help="add the tracer's boundaries as a cross-check (several seconds per k)")
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
+
+
+def outputs(args) -> list[Path]:
+    """The files ``groove audit`` would write for ``args`` (none without ``--out``)."""
+    return [Path(args.out) / name for name in ("claims.md", "claims.json")] if args.out else []
 
 
 def run(args) -> int:
@@ -66,8 +71,7 @@ def run(args) -> int:
 
     ks = tuple(args.ks) if args.ks else DEFAULT_KS
     out = output_directory(args.out) if args.out else None
-    if out is not None:
-        refuse_blocked([out / "claims.md", out / "claims.json"])
+    refuse_blocked(outputs(args))
     try:
         report = run_audit(ks, use_tracer=args.trace)
     except computation_errors() as exc:

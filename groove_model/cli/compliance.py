@@ -46,26 +46,35 @@ def add_parser(subparsers):
                    help="friction coefficients of the atlases in nu (default 1 10)")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--no-figure", action="store_true", help="write the CSVs and report only")
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
+
+
+def outputs(args) -> list[Path]:
+    """The files ``groove compliance`` would write for ``args``."""
+    from ..io.atlas import STANDARD_CURVES  # numpy: not at `groove --help`
+    from ..model.parameters import k_text
+
+    out = Path(args.out)
+    stems = [*(f"atlas_nu{k_text(nu)}" for nu in dict.fromkeys(args.poissons)),
+             *(f"atlas_k{k_text(k)}_in_nu" for k in dict.fromkeys(args.ks or (1.0, 10.0)))]
+    return [*(out / f"{stem}_{name}.csv" for stem in stems
+              for name in (*STANDARD_CURVES, "thresholds")),
+            *(out / f"{stem}.md" for stem in stems), out / "compliance.md",
+            *(() if args.no_figure else (out / "compliance.png", out / "compliance.svg"))]
 
 
 def run(args) -> int:
     """Compute, write and print the comparison; 1 if a computation failed."""
     # Imported here, not at the top: the atlases load the engine, scipy and pandas.
     from ..analysis.compliance import compliance_study
-    from ..io.atlas import STANDARD_CURVES, atlas_files
+    from ..io.atlas import atlas_files
     from ..io.atomic import atomic_write_all
     from ..model.parameters import k_text
 
     out = output_directory(args.out)
     ks = tuple(dict.fromkeys(args.ks or (1.0, 10.0)))
-    stems = [*(f"atlas_nu{k_text(nu)}" for nu in dict.fromkeys(args.poissons)),
-             *(f"atlas_k{k_text(k)}_in_nu" for k in ks)]
-    refuse_blocked([*(out / f"{stem}_{name}.csv" for stem in stems
-                      for name in (*STANDARD_CURVES, "thresholds")),
-                    *(out / f"{stem}.md" for stem in stems), out / "compliance.md",
-                    *(() if args.no_figure else (out / "compliance.png", out / "compliance.svg"))])
+    refuse_blocked(outputs(args))
     if not args.no_figure:
         require_plotting()
     try:

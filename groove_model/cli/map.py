@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+from pathlib import Path
 
 from .common import (
     EXIT_FAILED,
@@ -73,8 +74,15 @@ def add_parser(subparsers):
     p.add_argument("--no-boundaries", action="store_true",
                    help="shade the regions only (no tracing)")
     add_compliance_options(p)
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
+
+
+def outputs(args) -> list[Path]:
+    """The figure files ``groove map`` would write for ``args`` (``-o``, and its SVG with
+    ``--svg``)."""
+    target = Path(args.output)
+    return [target, *([target.with_suffix(".svg")] if args.svg else [])]
 
 
 def run(args) -> int:
@@ -92,8 +100,7 @@ def run(args) -> int:
     params = Parameters(k, compliance_from(args))
     target, fmt = figure_target(args.output)
     formats = tuple(dict.fromkeys([fmt, "svg"] if args.svg else [fmt]))
-    if args.svg:
-        refuse_blocked([target.with_suffix(".svg")])
+    refuse_blocked(outputs(args))
     boundary_set = None
     try:
         if not args.no_boundaries:

@@ -6,7 +6,7 @@ import functools
 import logging
 from pathlib import Path
 
-from .common import EXIT_OK, add_command, output_directory
+from .common import EXIT_OK, add_command, output_directory, refuse_blocked
 
 __all__ = ["add_parser", "run"]
 
@@ -53,11 +53,14 @@ def steps(out: Path) -> tuple:
 def run(args, groove_parser) -> int:
     """Run each step; stop at the first that does not return 0 and return its exit code."""
     out = output_directory(args.out)
-    output_directory(str(out / "compliance"))  # the last steps' places, before the first runs
+    parsed = [groove_parser.parse_args(argv) for argv in steps(out)]
+    # every step's places before the first step runs: a later one that would refuse them left
+    # the files of the earlier ones rewritten
+    output_directory(str(out / "compliance"))
+    refuse_blocked(path for step in parsed for path in step.outputs(step))
     out.mkdir(parents=True, exist_ok=True)
-    for argv in steps(out):
+    for argv, step in zip(steps(out), parsed, strict=True):
         log.info("groove %s", " ".join(argv))
-        step = groove_parser.parse_args(argv)
         code = step.run(step)
         if code != EXIT_OK:
             return code

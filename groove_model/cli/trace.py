@@ -70,7 +70,7 @@ def add_parser(subparsers):
                    help="prove every boundary in ball arithmetic (needs python-flint: pip "
                         "install 'groove-continuation[certify]')")
     add_compliance_options(p)
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
 
 
@@ -91,6 +91,17 @@ def overlay_name(ks) -> str:
     return f"boundaries_{len(texts)}k_{k_text(min(ks))}-{k_text(max(ks))}_{digest}"
 
 
+def outputs(args) -> list[Path]:
+    """The files ``groove trace`` would write for ``args``: the CSVs of every ``k`` and the
+    overlay (checked for a directory in their place before anything is traced)."""
+    from ..io.export import boundary_file_names  # pandas: not at `groove --help`
+
+    out, suffix = Path(args.out), compliance_label(compliance_from(args))
+    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
+    return [*(out / f for k in dict.fromkeys(args.ks) for f in boundary_file_names(k, suffix)),
+            *(() if args.no_figure else (out / f"{name}.png", out / f"{name}.svg"))]
+
+
 def run(args) -> int:
     """Trace every ``k``; write the CSVs of each ``k`` whose boundaries all succeeded, and the
     overlay if every ``k`` did; 1 if any boundary failed (with ``--certify``: or is not
@@ -98,7 +109,7 @@ def run(args) -> int:
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.atomic import WriteError
-    from ..io.export import boundary_file_names, write_boundary_set
+    from ..io.export import write_boundary_set
     from ..model.parameters import Parameters, k_text
     from ..tracing import trace_boundaries
 
@@ -119,8 +130,7 @@ def run(args) -> int:
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
     name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
-    refuse_blocked([*(out / f for k in args.ks for f in boundary_file_names(k, suffix)),
-                    *(() if args.no_figure else (out / f"{name}.png", out / f"{name}.svg"))])
+    refuse_blocked(outputs(args))
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
