@@ -52,7 +52,8 @@ def add_parser(subparsers):
 
 def outputs(args) -> list[Path]:
     """The files ``groove compliance`` would write for ``args``."""
-    from ..io.atlas import STANDARD_CURVES  # numpy: not at `groove --help`
+    # Imported here, not at the top: numpy, which `groove --help` does not need.
+    from ..io.atlas import STANDARD_CURVES
     from ..model.parameters import k_text
 
     out = Path(args.out)
