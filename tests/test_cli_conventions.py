@@ -272,7 +272,7 @@ def test_a_directory_in_a_files_place_leaves_every_file_of_the_group_as_it_was(
         main(argv)
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
-    assert f"{tmp_path / blocked} is a directory, in the place of an output file" in err
+    assert f"cannot write {tmp_path / blocked}: a directory is in its place" in err
     assert (tmp_path / untouched).read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted([blocked, untouched])
 
@@ -292,7 +292,8 @@ def test_a_directory_in_the_place_of_a_later_file_is_refused_before_computing(
     with pytest.raises(SystemExit) as exit_info:
         main([a.replace("DIR", str(tmp_path)) for a in argv])
     assert exit_info.value.code == 2
-    assert f"{tmp_path / blocked} is a directory" in capsys.readouterr().err
+    assert f"cannot write {tmp_path / blocked}: a directory is in its place" in \
+        capsys.readouterr().err
     assert [p.name for p in tmp_path.iterdir()] == [blocked]
 
 
@@ -394,7 +395,8 @@ def test_compliance_refuses_a_directory_in_the_place_of_its_report(tmp_path, cap
     with pytest.raises(SystemExit) as exit_info:
         main(["compliance", "--poissons", "0", "-k", "1", "--out", str(tmp_path)])
     assert exit_info.value.code == 2
-    assert f"{tmp_path / 'compliance.md'} is a directory" in capsys.readouterr().err
+    assert f"cannot write {tmp_path / 'compliance.md'}: a directory is in its place" in \
+        capsys.readouterr().err
     assert [p.name for p in tmp_path.iterdir()] == ["compliance.md"]
 
 
@@ -409,5 +411,5 @@ def test_reproduce_checks_every_steps_files_before_the_first_step(blocked, tmp_p
     with pytest.raises(SystemExit) as exit_info:
         main(["reproduce", "--out", str(tmp_path)])
     assert exit_info.value.code == 2
-    assert f"{tmp_path / blocked} is a directory, in the place of an output file" in \
+    assert f"cannot write {tmp_path / blocked}: a directory is in its place" in \
         capsys.readouterr().err

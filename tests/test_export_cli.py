@@ -378,7 +378,7 @@ def test_a_file_that_cannot_be_written_is_named_and_its_pair_is_not_written(tmp_
         main(["trace", "-k", "1", "--out", str(out), "--no-figure"])
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
-    assert f"{out / 'special_points_k1.csv'} is a directory, in the place of an output file" in err
+    assert f"cannot write {out / 'special_points_k1.csv'}: a directory is in its place" in err
     assert sorted(p.name for p in out.iterdir()) == ["special_points_k1.csv"]
 
 

@@ -65,10 +65,18 @@ def outputs(args) -> list[Path]:
     standard three adds its own CSV, known only once traced)."""
     from ..io.atlas import STANDARD_CURVES  # numpy: not at `groove --help`
 
-    out, stem = Path(args.out), "atlas" + compliance_label(compliance_from(args))
-    figures = () if args.no_figure else ("png", "svg") if args.svg else ("png",)
+    out, stem = Path(args.out), _stem(args)
     return [*(out / f"{stem}_{name}.csv" for name in (*STANDARD_CURVES, "thresholds")),
-            out / f"{stem}.md", *(out / f"{stem}.{fmt}" for fmt in figures)]
+            out / f"{stem}.md", *(out / f"{stem}.{fmt}" for fmt in _figures(args))]
+
+
+def _stem(args) -> str:
+    return "atlas" + compliance_label(compliance_from(args))
+
+
+def _figures(args) -> tuple:
+    """The figure's formats: none with ``--no-figure``, PNG, and SVG with ``--svg``."""
+    return () if args.no_figure else ("png", "svg") if args.svg else ("png",)
 
 
 def run(args) -> int:
@@ -84,8 +92,7 @@ def run(args) -> int:
                          f"{k_text(args.k_max)}")
     out = output_directory(args.out)
     compliance = compliance_from(args)
-    stem = "atlas" + compliance_label(compliance)
-    figures = () if args.no_figure else ("png", "svg") if args.svg else ("png",)
+    stem = _stem(args)
     refuse_blocked(outputs(args))
     if not args.no_figure:
         require_plotting()
@@ -105,7 +112,7 @@ def run(args) -> int:
         # Imported here: matplotlib is needed for the figure only.
         from ..plots.atlas import atlas_figure_files
 
-        figure = atlas_figure_files(atlas, out / stem, figures)
+        figure = atlas_figure_files(atlas, out / stem, _figures(args))
     paths = write_atlas(atlas, out, stem, figure)  # the CSVs, the report and the figure: one group
     print(f"atlas for k in [{args.k_min:g}, {args.k_max:g}], c = {compliance.ratio:.6g}: "
           f"{len(atlas.curves)} curves, {sum(len(c.p) for c in atlas.curves.values())} points "

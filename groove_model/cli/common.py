@@ -286,11 +286,14 @@ def _refuse_dangling_link(option: str, directory: Path, given: Path) -> None:
 
 def refuse_blocked(paths) -> None:
     """:class:`UsageError` if a directory stands where one of the output files ``paths`` is to
-    be written: seen before anything is computed, so it is bad input (exit code 2)."""
-    for path in map(Path, paths):
-        if path.is_dir():
-            raise UsageError(f"{path} is a directory, in the place of an output file: move it "
-                             "or write elsewhere")
+    be written (:func:`~groove_model.io.atomic.check_targets`): seen before anything is
+    computed, so it is bad input (exit code 2)."""
+    from ..io.atomic import WriteError, check_targets  # light, but only a writing command needs it
+
+    try:
+        check_targets(paths)
+    except WriteError as exc:
+        raise UsageError(f"{exc.strerror}: move it or write elsewhere") from None
 
 
 def _existing_ancestor(path: Path) -> Path | None:

@@ -56,7 +56,9 @@ def run(args, groove_parser) -> int:
     parsed = [groove_parser.parse_args(argv) for argv in steps(out)]
     # every step's places before the first step runs: a later one that would refuse them left
     # the files of the earlier ones rewritten
-    output_directory(str(out / "compliance"))
+    for step in parsed:
+        if getattr(step, "out", None):
+            output_directory(step.out)
     refuse_blocked(path for step in parsed for path in step.outputs(step))
     out.mkdir(parents=True, exist_ok=True)
     for argv, step in zip(steps(out), parsed, strict=True):

@@ -61,7 +61,7 @@ def add_parser(subparsers):
     add_compliance_options(p)
     p.add_argument("--keep-unphysical", action="store_true",
                    help="keep the parts of each boundary where its regime is not valid")
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, outputs=outputs)
     return p
 
 
@@ -137,6 +137,13 @@ class _Termination:
             raise SystemExit(128 + self.signum)
 
 
+def outputs(args) -> list:
+    """The two files ``groove sweep`` would write for ``args``."""
+    from ..io.sweep import sweep_files  # pandas: not at `groove --help`
+
+    return sweep_files(args.out, suffix=compliance_label(compliance_from(args)))
+
+
 def run(args) -> int:
     """Trace every ``k``; write the two files and return 0, or write nothing and return 1."""
     # Imported here, not at the top: the tracer and the CSV files load the engine and pandas,
@@ -155,8 +162,7 @@ def run(args) -> int:
     out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
     compliance = compliance_from(args)
-    refuse_blocked(out / f"sweep_{table}{compliance_label(compliance)}.csv"
-                   for table in ("boundaries", "special_points"))
+    refuse_blocked(outputs(args))
     if args.certify:
         require_certify_extra()
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,

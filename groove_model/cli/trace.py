@@ -96,10 +96,15 @@ def outputs(args) -> list[Path]:
     overlay (checked for a directory in their place before anything is traced)."""
     from ..io.export import boundary_file_names  # pandas: not at `groove --help`
 
-    out, suffix = Path(args.out), compliance_label(compliance_from(args))
-    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
+    out, suffix, name = Path(args.out), compliance_label(compliance_from(args)), _overlay(args)
     return [*(out / f for k in dict.fromkeys(args.ks) for f in boundary_file_names(k, suffix)),
             *(() if args.no_figure else (out / f"{name}.png", out / f"{name}.svg"))]
+
+
+def _overlay(args) -> str:
+    """The overlay's file name without suffix: ``--figure``, else from the k and compliance."""
+    return args.figure or (overlay_name(list(dict.fromkeys(args.ks)))
+                           + compliance_label(compliance_from(args)))
 
 
 def run(args) -> int:
@@ -129,7 +134,7 @@ def run(args) -> int:
         require_plotting()
     compliance = compliance_from(args)
     suffix = compliance_label(compliance)
-    name = args.figure or overlay_name(list(dict.fromkeys(args.ks))) + suffix
+    name = _overlay(args)
     refuse_blocked(outputs(args))
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):

@@ -19,10 +19,17 @@ from .atomic import (
     remove_stale_temporaries,
 )
 
-__all__ = ["SWEEP_FILES", "write_sweep"]
+__all__ = ["SWEEP_FILES", "sweep_files", "write_sweep"]
 
 #: the boundary rows of every k (long format) and the special points of every k
 SWEEP_FILES = ("sweep_boundaries.csv", "sweep_special_points.csv")
+
+
+def sweep_files(directory, prefix: str = "sweep", suffix: str = "") -> list[Path]:
+    """The two files of :func:`write_sweep`: ``{prefix}_boundaries{suffix}.csv`` and
+    ``{prefix}_special_points{suffix}.csv`` in ``directory``."""
+    return [Path(directory) / f"{prefix}_{table}{suffix}.csv"
+            for table in ("boundaries", "special_points")]
 
 
 def _temporary(path: Path):
@@ -71,8 +78,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     remove_stale_temporaries(directory)
-    targets = [directory / f"{prefix}_{table}{suffix}.csv"
-               for table in ("boundaries", "special_points")]
+    targets = sweep_files(directory, prefix, suffix)
     check_targets(targets)
     opened: list = []
     failed: list[SweepResult] = []
@@ -98,7 +104,6 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
             for _, name in opened:
                 name.unlink(missing_ok=True)
             return (), failed
-        check_targets(targets)  # a directory made in a file's place while the sweep ran
         commit_all([(name, path) for (_, name), path in zip(opened, targets, strict=True)])
         return tuple(targets), failed
     except BaseException as exc:

@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -20,6 +19,7 @@ from matplotlib.ticker import FuncFormatter
 
 from ..io.atomic import atomic_write_all
 from ..tracing.atlas import Atlas
+from .files import figure_files
 
 __all__ = ["CURVE_COLOURS", "atlas_figure_files", "compliance_figure_files", "draw_atlas",
            "save_atlas_figure", "save_compliance_figure"]
@@ -91,15 +91,10 @@ def draw_atlas(axes, atlas: Atlas, linestyle: str = "-", label_suffix: str = "",
 
 
 def _files(fig: Figure, stem, formats) -> list:
-    """``(stem.<format>, write)`` for each format, for :func:`atomic_write_all`; the SVG the same
-    on every run (fixed hash salt, no date)."""
+    """``(stem.<format>, write)`` for each format (:func:`figure_files`)."""
     stem = Path(stem)
-
-    def write(tmp, fmt):
-        with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-            fig.savefig(tmp, format=fmt, dpi=120, metadata={"Date": None} if fmt == "svg" else None)
-    return [(stem.with_name(f"{stem.name}.{fmt}"), lambda tmp, f=fmt: write(tmp, f))
-            for fmt in formats]
+    return figure_files(fig, [(stem.with_name(f"{stem.name}.{fmt}"), fmt) for fmt in formats],
+                        dpi=120)
 
 
 def save_atlas_figure(atlas: Atlas, stem, formats=("png",), title: str | None = None

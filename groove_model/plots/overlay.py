@@ -14,13 +14,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-import matplotlib
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
 from ..io.atomic import atomic_write_all
 from ..model.parameters import Compliance, Parameters, k_text
 from ..tracing import BoundarySet
+from .files import figure_files
 from .labels import label_regions, region_label_positions
 
 __all__ = ["LINESTYLES", "MARKER_LABELS", "STYLE_LABELS", "draw_boundaries", "save_overlay"]
@@ -201,8 +201,5 @@ def save_overlay(boundary_sets, path, degrees: bool = False, formats=("png", "sv
         # the path as given for its own format (x.PNG stays x.PNG), the stem + suffix else
         own = path.suffix.lower() == f".{fmt}"
         target = path if own else stem.parent / f"{stem.name}.{fmt}"
-        files.append((target, lambda tmp, f=fmt: fig.savefig(
-            tmp, format=f, dpi=150, metadata={"Date": None} if f == "svg" else None)))
-    # every format or none (one group); a fixed hash salt and no date: the same SVG every run
-    with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-        return atomic_write_all(files)
+        files.append((target, fmt))
+    return atomic_write_all(figure_files(fig, files, dpi=150))  # every format or none

@@ -14,7 +14,6 @@ import logging
 import math
 from pathlib import Path
 
-import matplotlib
 import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.colors import to_rgba
@@ -27,6 +26,7 @@ from ..io.atomic import atomic_write_all
 from ..model.lines import dr_limit_no_roll_point
 from ..model.parameters import Parameters
 from ..tracing import trace_boundaries
+from .files import figure_files
 from .labels import label_regions, region_label_positions
 from .overlay import DIAGONAL_LABEL, MARKER_LABELS, STYLE_LABELS, draw_boundaries
 
@@ -366,8 +366,5 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     for fmt in formats:
         # the path as given for its own format (x.PNG stays x.PNG)
         target = path if path.suffix.lower() == "." + fmt else path.with_suffix("." + fmt)
-        files.append((target, lambda tmp, f=fmt: fig.savefig(
-            tmp, format=f, dpi=dpi, metadata={"Date": None} if f == "svg" else None)))
-    # every format or none (one group); a fixed hash salt and no date: the same SVG every run
-    with matplotlib.rc_context({"svg.hashsalt": "groove"}):
-        return atomic_write_all(files)
+        files.append((target, fmt))
+    return atomic_write_all(figure_files(fig, files, dpi=dpi))  # every format or none
