@@ -7,6 +7,7 @@ points as tracing each k on its own, that ``groove sweep`` writes the same bytes
 """
 
 import concurrent.futures
+import contextlib
 import os
 import pty
 import signal
@@ -288,6 +289,48 @@ def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
         os.close(controller)
     assert shown.returncode == 0
     assert b"\r[" in screen and b"2/2 k" in screen
+
+
+def _children(pid: int) -> list[int]:
+    """The child processes of ``pid``, from Linux's /proc (field 4 of ``stat`` is the parent)."""
+    children = []
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            fields = stat.read_text().rsplit(")", 1)[1].split()
+        except (OSError, IndexError):
+            continue  # ended meanwhile
+        if int(fields[1]) == pid:
+            children.append(int(stat.parent.name))
+    return children
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux's /proc")
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGKILL])
+def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
+    # a forked worker inherited the parent's SIGTERM handler, which only records the signal, and
+    # ran on (the sweep ended 0); a worker killed outright gave the pool's traceback
+    out = tmp_path / "out"
+    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
+                                "--k-max", "1e3", "-n", "4000", "--jobs", "2", "--out",
+                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                               start_new_session=True)
+    try:
+        deadline = time.monotonic() + 120
+        while not _children(process.pid) and time.monotonic() < deadline:
+            time.sleep(0.05)  # until the pool has started its workers
+        workers = _children(process.pid)
+        assert workers, "no worker process found"
+        time.sleep(0.5)  # into their first chunks
+        os.kill(workers[0], signum)
+        _, stderr = process.communicate(timeout=120)
+    finally:  # no process of the sweep left running (they hold the pipes open)
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
+        process.communicate()
+    assert process.returncode == 1, stderr
+    assert b"a worker process ended abruptly" in stderr and b"Traceback" not in stderr
+    assert list(out.iterdir()) == []
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])

@@ -148,6 +148,8 @@ def run(args) -> int:
     """Trace every ``k``; write the two files and return 0, or write nothing and return 1."""
     # Imported here, not at the top: the tracer and the CSV files load the engine and pandas,
     # which `groove --help` and `groove solve` should not wait for.
+    from concurrent.futures.process import BrokenProcessPool
+
     from ..io.sweep import write_sweep
     from ..tracing import sweep_results
 
@@ -167,9 +169,16 @@ def run(args) -> int:
         require_certify_extra()
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
                             compliance=compliance, certify=args.certify)
-    with _Termination(Progress(len(ks))).installed() as progress:
-        paths, failed = write_sweep(results, out, suffix=compliance_label(compliance),
-                                    progress=progress)
+    try:
+        with _Termination(Progress(len(ks))).installed() as progress:
+            paths, failed = write_sweep(results, out, suffix=compliance_label(compliance),
+                                        progress=progress)
+    except BrokenProcessPool:
+        # a worker was killed (out of memory, a signal to it alone, or a Ctrl-C that reached the
+        # workers while the parent was starting them, where Python can drop the parent's)
+        print("groove sweep: error: a worker process ended abruptly (killed, interrupted or out "
+              "of memory); nothing written", file=sys.stderr)
+        return EXIT_FAILED
     for result in failed:
         for failure in result.failures:
             print(f"groove sweep: error: k = {result.k!r}: {failure}", file=sys.stderr)

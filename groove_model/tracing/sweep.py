@@ -18,6 +18,7 @@ from __future__ import annotations
 import collections
 import concurrent.futures
 import os
+import signal
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -118,8 +119,27 @@ def _workers(jobs, executor) -> int:
     return jobs
 
 
-def _in_order(executor, function, chunks: list, window: int, args: tuple) -> Iterator[list]:
-    """``function(chunk, *args)`` for each chunk on ``executor``, in order, ``window`` at a time."""
+def _worker_signals() -> None:
+    """In each worker of ``--jobs``: Ctrl-C, SIGTERM and SIGHUP end the worker at once, quietly.
+
+    Ctrl-C at a terminal reaches the whole process group. Left to Python's default, a worker
+    waiting for its next chunk printed a ``KeyboardInterrupt`` traceback beside the parent's
+    one-line message; a forked worker also inherited the parent's SIGTERM handler, which only
+    records the signal, so a terminated worker ran on. The parent, which handles the signal,
+    stops the sweep and writes nothing. A Ctrl-C the parent ignores (a background job) stays
+    ignored in the workers too.
+    """
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+    for name in ("SIGTERM", "SIGHUP"):  # no SIGHUP on Windows
+        if hasattr(signal, name):
+            signal.signal(getattr(signal, name), signal.SIG_DFL)
+
+
+def _in_order(executor, function, chunks: list, window: int, args: tuple,
+              cancel: bool = True) -> Iterator[list]:
+    """``function(chunk, *args)`` for each chunk on ``executor``, in order, ``window`` at a time;
+    the chunks not yet started are cancelled when the caller stops early, if ``cancel``."""
     pending: collections.deque = collections.deque()
     remaining = iter(chunks)
     try:
@@ -134,7 +154,7 @@ def _in_order(executor, function, chunks: list, window: int, args: tuple) -> Ite
                 pending.append(executor.submit(function, chunk, *args))
             yield done
     finally:
-        for future in pending:
+        for future in pending if cancel else ():
             future.cancel()
 
 
@@ -212,9 +232,15 @@ def _results(values: list[float], jobs: int | None,
         for results in _in_order(executor, _trace_chunk, chunks, window, args):
             yield from results
         return
-    with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
-        for results in _in_order(pool, _trace_chunk, chunks, window, args):
+    pool = concurrent.futures.ProcessPoolExecutor(max_workers=jobs, initializer=_worker_signals)
+    try:
+        for results in _in_order(pool, _trace_chunk, chunks, window, args, cancel=False):
             yield from results
+    finally:
+        # the pool cancels what it has not started itself: a future cancelled from here
+        # while a worker ended by Ctrl-C breaks the pool made Python 3.11's pool thread
+        # fail with a traceback (InvalidStateError in terminate_broken)
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def trace_many(ks: Iterable[float], jobs: int | None = None, *,
