@@ -52,6 +52,7 @@ from typing import cast
 import numpy as np
 
 from .augmented import EventSystem, FoldSystem
+from .closing import CLOSE_TOLERANCE
 from .errors import ContinuationError
 from .events import Event, box_events
 from .family import Family
@@ -59,14 +60,11 @@ from .options import Options
 from .predictor import hermite
 from .problem import Problem, as_vector
 from .result import Curve, SpecialKind, SpecialPoint, Status
-from .tracker import trace
+from .tracker import follow
 
 __all__ = ["Codim2Curve", "Codim2Kind", "Codim2Point", "follow_event", "follow_fold"]
 
 _EPS = np.finfo(float).eps
-
-#: most pieces of one curve (a new piece starts where the fold test's borders are renewed)
-MAX_PIECES = 200
 
 #: a polished point may move at most this far (relative to 1 + max|z|) from the located one
 POLISH_JUMP = 1e-8
@@ -149,8 +147,10 @@ class Codim2Curve:
     points : tuple of Codim2Point
         Codimension-2 points in order along the curve.
     status : continuation.Status
-        How the last piece ended (or the first piece that failed); ``MAX_STEPS`` if the
-        borders were renewed :data:`MAX_PIECES` times.
+        How the last piece ended (or the first piece that failed): ``CLOSED`` where the
+        curve came back to its first point (in any piece), ``MAX_STEPS`` or ``MAX_ARCLENGTH``
+        where the options' limits, which hold for the whole curve over its pieces (a point
+        inserted at a special point counting as a step), ran out.
     message : str
     equations : tuple of str
         The curve's defining equations in words.
@@ -398,29 +398,70 @@ def _follow(family, renew, system, z0, what, turn_kind, direction, options, even
         events += tuple(box_events({n2 - 1: lo}, {n2 - 1: hi}, names=names))
     heading = _direction(direction, n2)
     pieces, systems = [], []
+    # the user's limits hold for the whole curve: what is left of them for the next piece
+    steps, length = options.max_steps, options.max_arclength
+    closes_at = None  # a later piece closes the curve on the first piece's start
+    exhausted = None
     while True:
         extra = system.border_events() if renew is not None else []
         problem = Problem(system.residual, system.jacobian, names=names)
-        curve = trace(problem, z0, direction=heading, options=options,
-                      events=[*events, *extra])
+        curve = follow(problem, z0, direction=heading, events=[*events, *extra],
+                       options=dataclasses.replace(options, max_steps=steps,
+                                                   max_arclength=length),
+                       closes_at=closes_at)
         pieces.append(curve)
         systems.append(system)
         ended = [p for p in curve.special("event") if p.index == len(curve) - 1]
         # an event point's position is an int (SpecialPoint)
         renewing = (curve.status is Status.TERMINAL_EVENT and ended
                     and cast(int, ended[-1].event) >= len(events) and len(curve) > 1)
-        if not renewing or len(pieces) >= MAX_PIECES:
+        if not renewing:
+            break
+        if closes_at is None:
+            closes_at = (curve.x[0], curve.tangents[0])
+        elif options.detect_closed and _back_at(curve, *closes_at):
+            # the borders are renewed where the curve comes back to its start: a new piece
+            # would close after a step of rounding length, with folds of its noise
+            exhausted = (Status.CLOSED, f"{Status.CLOSED.value} after {len(pieces)} pieces, "
+                         f"length s={sum(float(c.s[-1]) for c in pieces):.12g}")
+            break
+        steps -= len(curve) - 1  # a point inserted at a special point counts as a step
+        length -= float(curve.s[-1])
+        if steps <= 0 or not length > 0:
+            # stopped for renewing the borders once more, not at an end of the curve
+            exhausted = _limit(Status.MAX_STEPS if steps <= 0 else Status.MAX_ARCLENGTH,
+                               options, len(pieces))
             break
         z0, heading = curve.x[-1], curve.tangents[-1]
         system = renew(z0)
-    result = _join(pieces, systems, events, what, turn_kind, names, user_options)
+    if pieces[-1].status in (Status.MAX_STEPS, Status.MAX_ARCLENGTH) and len(pieces) > 1:
+        exhausted = _limit(pieces[-1].status, options, len(pieces))  # not the piece's share
+    result = _join(pieces, systems, events, what, turn_kind, names, user_options, exhausted)
     if result.status.failed and user_options.raise_on_failure:
         raise ContinuationError(result.message, pieces[-1])
     return result
 
 
-def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Curve:
-    """One :class:`Codim2Curve` from the pieces (each starts at the last one's end)."""
+def _limit(status: Status, options: Options, pieces: int) -> tuple[Status, str]:
+    """``(status, message)`` of a curve that reached a limit of ``options`` over its pieces."""
+    if status is Status.MAX_STEPS:
+        return status, f"{status.value} ({options.max_steps}, over {pieces} pieces)"
+    return status, f"{status.value} s={options.max_arclength:.12g} (over {pieces} pieces)"
+
+
+def _back_at(curve: Curve, x0: np.ndarray, t0: np.ndarray) -> bool:
+    """Whether ``curve`` ends on its first piece's start ``x0``, along its tangent ``t0``
+    (within the engine's closing tolerance, :data:`continuation.closing.CLOSE_TOLERANCE`)."""
+    gap = float(np.max(np.abs(curve.x[-1] - x0)))
+    return (gap <= CLOSE_TOLERANCE * (1.0 + float(np.max(np.abs(x0))))
+            and float(curve.tangents[-1] @ t0) > 0.0)
+
+
+def _join(pieces, systems, events, what, turn_kind, names, options,
+          exhausted=None) -> Codim2Curve:
+    """One :class:`Codim2Curve` from the pieces (each starts at the last one's end);
+    ``exhausted``: ``(status, message)`` if the curve closed or the limits ran out at a
+    renewal of the borders."""
     z, s, tangents, residuals, points = [], [], [], [], []
     offset_s, offset_i = 0.0, 0
     for k, (curve, system) in enumerate(zip(pieces, systems, strict=True)):
@@ -444,13 +485,8 @@ def _join(pieces, systems, events, what, turn_kind, names, options) -> Codim2Cur
                    f"is a {what} at its p (a fold of that coordinate, for follow_fold), not a "
                    f"degenerate one (a cusp); the augmented system's Jacobian is singular there "
                    f"({message.partition(': the start is')[0]})")
-    ended = [p for p in last.special("event") if p.index == len(last) - 1]
-    if (len(pieces) >= MAX_PIECES and status is Status.TERMINAL_EVENT and ended
-            and ended[-1].event >= len(events)):
-        # stopped for renewing the borders once more, not at an end of the curve
-        status = Status.MAX_STEPS
-        message = (f"{Status.MAX_STEPS.value}: stopped after {MAX_PIECES} renewals of the "
-                   "fold test's borders")
+    if exhausted is not None:
+        status, message = exhausted
     return Codim2Curve(
         what=what, z=np.concatenate(z), s=np.concatenate(s), tangents=np.concatenate(tangents),
         residuals=np.concatenate(residuals), points=tuple(points), status=status,

@@ -176,8 +176,8 @@ def trace(
 def follow(problem: Problem, x0, direction=None, options: Options | None = None,
            events: Sequence[Event] = (), tangent=None, *, evaluator: Evaluator | None = None,
            start_mark: tuple = (SpecialKind.START, "start", 0.0),
-           at_branch_point: bool = False) -> Curve:
-    """:func:`trace` with the hooks branch switching needs.
+           at_branch_point: bool = False, closes_at: tuple | None = None) -> Curve:
+    """:func:`trace` with the hooks branch switching and the pieces of a curve need.
 
     Parameters
     ----------
@@ -190,6 +190,10 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
     at_branch_point : bool
         ``x0`` is a located branch point and ``tangent`` the new branch's: the start is not
         corrected (the bordered matrix is singular there).
+    closes_at : (ndarray, ndarray), optional
+        ``(x, t)``: the curve closes where it passes through the point ``x`` (on the curve)
+        with the tangent ``t``, instead of through its own start (a curve traced in pieces,
+        :mod:`continuation.codim2`, closes on the first piece's start).
     """
     if not isinstance(problem, Problem):
         raise TypeError(f"problem must be a Problem, got {type(problem).__name__}")
@@ -225,6 +229,8 @@ def follow(problem: Problem, x0, direction=None, options: Options | None = None,
         index = run.append(start.x, 0.0, start.tangent, start.residual, start.iterations)
         run.mark(start_mark[0], start_mark[1], index, start_mark[2] or 0.0)
         stepper = _Stepper(run, start)
+        if closes_at is not None and options.detect_closed:
+            stepper.start = _closing_target(run, *closes_at)
         while not stepper.check_terminated():
             stepper.step()
         return run.curve(cast(Status, stepper.status), stepper.message, n1)
@@ -440,6 +446,19 @@ def _start(run: Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
     point = run.node(x, 0.0, sign * t, sign * det, correction.residual, correction.iterations,
                      correction.jacobian if correction.ok else None)
     return point, None, ""
+
+
+def _closing_target(run: Run, x, tangent) -> Node:
+    """The node a run closes on, at the curve point ``x`` with the tangent ``tangent``: its
+    determinant and event values are this run's (the problem may differ from the one that
+    found ``x``, by its borders, and define the same curve), its arclength 0."""
+    x = as_vector("closes_at x", x)
+    t = as_vector("closes_at tangent", tangent)
+    t = t / float(np.linalg.norm(t))
+    J = run.evaluator.jacobian(x)
+    det = float(np.linalg.det(np.vstack([J, t])))
+    residual = float(np.max(np.abs(run.evaluator.residual(x))))
+    return run.node(x.copy(), 0.0, t, det, residual, 0, J)
 
 
 def _orientation(direction, n1: int) -> tuple[np.ndarray | None, int]:

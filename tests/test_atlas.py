@@ -1,6 +1,7 @@
 """The atlas: special points followed in k (and in nu) against the tracer at each k, the
 thresholds against closed forms and against a bisection on the per-k topology."""
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -12,6 +13,7 @@ from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
 from groove_model.tracing.atlas import (
     ATLAS_COLUMNS,
+    ATLAS_OPTIONS,
     atlas_in_k,
     trace_atlas,
     trace_atlas_in_poisson,
@@ -261,3 +263,12 @@ def test_the_poisson_ratio_of_an_atlas_is_the_one_given(nu):
     atlas = trace_atlas((1.0, 3.0), Compliance.from_poisson(nu))
     rows = atlas.curve_table("dr_limit_fold_delta")
     assert rows and all(row[ATLAS_COLUMNS.index("nu")] == nu for row in rows)
+
+
+@pytest.mark.parametrize("limit", [{"max_steps": 5}, {"max_arclength": 3.0}])
+def test_a_curve_stopped_by_the_options_limits_fails_the_atlas(limit):
+    # it was ok with no failure: k_fold missing and the curves cut in pieces with gaps in k
+    atlas = trace_atlas(options=dataclasses.replace(ATLAS_OPTIONS, **limit))
+    assert not atlas.ok
+    assert any("stopped before the curve's end" in failure and "raise Options.max_steps"
+               in failure for failure in atlas.failures)

@@ -59,6 +59,7 @@ from continuation import (
     Event,
     Options,
     SpecialPoint,
+    Status,
     follow_event,
     follow_fold,
 )
@@ -316,6 +317,13 @@ def _trace(axis: Axis, p_lo: float, p_hi: float, value_range, options) -> Atlas:
                 followed.append((start, trace))
                 if not trace.ok:
                     failures.append(f"{start.name}: {trace.message}")
+                elif trace.status in (Status.MAX_STEPS, Status.MAX_ARCLENGTH):
+                    # the options' limit, not an end of the curve: the rest of the range, and
+                    # the thresholds on it, would be missing from an atlas reported ok
+                    failures.append(f"{start.name}: stopped before the curve's end at "
+                                    f"{axis.name} = {float(axis.value(trace.p[-1])):.12g}: "
+                                    f"{trace.message}; raise Options.max_steps or "
+                                    "max_arclength")
     # a fixed order: the junction, then the folds by boundary and coordinate
     order = sorted(starts.items(), key=lambda item: (
         item[1].kind is not PointKind.JUNCTION, _BOUNDARIES.index(item[1].boundary),

@@ -206,15 +206,53 @@ def test_bad_arguments_name_the_quantity():
         Family(None)
 
 
-def test_a_curve_stopped_by_the_limit_of_renewals_says_so(monkeypatch):
-    from continuation import Status, codim2
-
-    monkeypatch.setattr(codim2, "MAX_PIECES", 2)
+def test_the_limits_hold_for_the_whole_curve_over_its_pieces():
+    # each piece had the whole max_steps, and the curve stopped after 200 renewals of the
+    # borders however far from its end, reported ok (at p = 41.9 of 50)
     u = 1.0 / math.sqrt(3.0)
     folds = follow_fold(rotating_family(), [u ** 3 - u, u, 0.0], p=0.0, coordinate=0,
-                        options=OPTIONS, parameter_range=(-1.0, 4.0))
-    assert len(folds.pieces) == 2 and folds.status is Status.MAX_STEPS
-    assert "stopped after 2 renewals" in folds.message
+                        options=Options(tol=1e-12, max_steps=30),
+                        parameter_range=(-1.0, 40.0))
+    assert len(folds.pieces) > 1 and folds.status is Status.MAX_STEPS
+    assert len(folds) <= 31 and "over" in folds.message and "pieces" in folds.message
+    far = follow_fold(turned_family(5.0, lambda p: 1.0), [u ** 3 - u, u, 0.0], p=0.0,
+                      coordinate=0, parameter_range=(-1.0, 45.0))
+    assert far.status is Status.TERMINAL_EVENT and len(far.pieces) > 200
+    assert far.p[-1] == pytest.approx(45.0, abs=1e-12)
+    longest = follow_fold(rotating_family(), [u ** 3 - u, u, 0.0], p=0.0, coordinate=0,
+                          options=Options(tol=1e-12, max_arclength=20.0),
+                          parameter_range=(-1.0, 40.0))
+    assert longest.status is Status.MAX_ARCLENGTH
+    assert longest.s[-1] == pytest.approx(20.0, abs=1e-9)
+
+
+def turned_family(turn: float, a) -> Family:
+    """``(U^3 - a(p) U - lambda, V) = 0`` with ``(U, V)`` the coordinates ``(a, b)`` turned by
+    ``turn p``: the folds in ``lambda`` are ``3 U^2 = a(p)``, ``V = 0``; with ``a = cos`` one
+    closed loop in ``p`` with two cusps, at ``p = +-pi/2`` (``U = 0``). With ``turn != 0``
+    the fold test's borders are renewed on the way (every ~0.2 in ``p`` for ``turn = 5``)."""
+    def residual(x, p):
+        c, s = math.cos(turn * p), math.sin(turn * p)
+        u, v = c * x[1] + s * x[2], -s * x[1] + c * x[2]
+        return np.array([u ** 3 - a(p) * u - x[0], v])
+
+    return Family(residual, names=("lambda", "a", "b"), parameter="p")
+
+
+@pytest.mark.parametrize("turn", [0.0, 1.0, 5.0])
+@pytest.mark.parametrize("p0", [0.0, 0.3, -1.4])
+def test_a_closed_curve_of_folds_closes_once_with_its_borders_renewed(turn, p0):
+    # renewed borders: it went round until the limit of pieces, each cusp reported 50 times,
+    # and ok; a piece ending at the start closed after a step of 1e-11 with two noise folds
+    u = math.sqrt(math.cos(p0) / 3.0)
+    c, s = math.cos(turn * p0), math.sin(turn * p0)
+    folds = follow_fold(turned_family(turn, math.cos), [u ** 3 - math.cos(p0) * u, c * u, s * u], p=p0,
+                        coordinate=0, parameter_range=(-3.0, 3.0))
+    assert folds.status is Status.CLOSED and (len(folds.pieces) > 1) == (turn != 0.0)
+    cusps = folds.special("cusp")
+    assert sorted(round(point.p, 6) for point in cusps) == [-1.570796, 1.570796]
+    assert np.max(np.abs(folds.z[-1] - folds.z[0])) <= 1e-9
+    assert folds.p.max() == pytest.approx(math.pi / 2, abs=1e-6)
 
 
 def test_a_start_outside_the_parameter_range_is_refused():
