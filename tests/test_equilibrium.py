@@ -8,6 +8,7 @@ import pytest
 from groove_model.model.dimensional import dimensional_state
 from groove_model.model.equilibrium import (
     double_rolling_equation,
+    double_rolling_state,
     regime_validity,
     solve_equilibrium,
     wall_terms,
@@ -193,6 +194,33 @@ def test_dimensional_results_refuse_the_closed_groove():
     eq = solve_equilibrium(0.5 * math.pi, 0.5 * math.pi, 1.0)
     with pytest.raises(ValueError, match=r"no dimensional equilibrium at gamma = 1.5707963267948966 rad"):
         dimensional_state(eq, 0.01, 2e11, 0.3, 0.033)
+
+
+@pytest.mark.parametrize("gamma, delta, k, nu, regime", [
+    (0.6557071464778439, 0.3941992214086168, 2.6034760346472745, 0.0, "double_rolling"),
+    (0.5851883877175147, 0.40062835471603003, 0.5256492027925755, 0.5, "rolling_sliding"),
+    (0.3011915507521871, 0.22178304388535006, 23696.860993294893, 0.0, "double_rolling"),
+])
+def test_a_double_rolling_root_within_rounding_of_w_one_half_is_found(gamma, delta, k, nu,
+                                                                      regime):
+    # the half of [0, 1] was chosen by rho0 > 1/8 + 5K/12, which rounded against P(1/2) as
+    # evaluated: no sign change in the bracket, and a RuntimeError (groove solve: a traceback).
+    # The regimes and w ~ 1/2 (to 5e-17) are from 40-digit solves of the balances.
+    params = Parameters(k, Compliance.from_poisson(nu))
+    eq = solve_equilibrium(gamma, delta, params)
+    assert eq.regime == regime
+    dr = double_rolling_state(np.array([gamma]), np.array([delta]), params)
+    w = math.sqrt(math.sin(dr["beta_L"][0]) / math.sin(dr["beta_R"][0]))
+    assert w == pytest.approx(0.5, abs=1e-15)
+
+
+@pytest.mark.parametrize("gamma, delta", [(1e-9, 0.9e-9), (1.5707963267, 0.1)])
+def test_dimensional_results_where_the_vertical_force_is_small_but_resolved(gamma, delta):
+    # refused below an absolute 1e-12 (1.2e-13 and 1.7e-15 here), with a message naming a range
+    # the gamma was in; Z = (M g / (C v))^(2/3) is finite
+    eq = solve_equilibrium(gamma, delta, 1.0)
+    dim = dimensional_state(eq, 0.01, 2e11, 0.3, 0.033)
+    assert math.isfinite(float(dim.Z)) and float(dim.Z) > 0.0
 
 
 def test_friction_is_passed_as_k():

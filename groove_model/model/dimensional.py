@@ -81,8 +81,9 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     Raises
     ------
     ValueError
-        For a parameter outside its range, or where the scaled vertical force vanishes
-        (``gamma = pi/2``), so no finite approach ``Z`` carries the weight.
+        For a parameter outside its range, or where the scaled vertical force is not above
+        its rounding (it vanishes at ``gamma = pi/2``), so no finite approach ``Z`` carries
+        the weight.
     """
     R = _positive("radius R", radius, "m")
     E = _positive("Young's modulus E", young, "Pa")
@@ -92,16 +93,23 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     G = 3.0 * (1.0 - nu * nu) / (4.0 * E)
     C = math.sqrt(R) / G
     n_L, n_R, t = (np.asarray(v, float) for v in (eq.n_L, eq.n_R, eq.t))
-    vertical = (n_L * np.cos(eq.theta_L) + t * np.sin(eq.theta_L)
-                + n_R * np.cos(eq.theta_R) + t * np.sin(eq.theta_R))
-    degenerate = ~(np.asarray(vertical) > 1e-12)
+    terms = (n_L * np.cos(eq.theta_L), t * np.sin(eq.theta_L), n_R * np.cos(eq.theta_R),
+             t * np.sin(eq.theta_R))
+    vertical = sum(terms)
+    # its rounding: a few units of the largest term (the terms cancel where a wall overhangs);
+    # a sum not above it is no force that carries the weight (at gamma = pi/2 it is exactly 0)
+    rounding = 8.0 * np.finfo(float).eps * np.maximum.reduce([np.abs(v) for v in terms])
+    degenerate = ~(np.asarray(vertical) > rounding)
     if np.any(degenerate):
         where = np.flatnonzero(np.ravel(degenerate))[0]
         gamma = float(np.ravel(eq.gamma)[where])
+        delta = float(np.ravel(eq.delta)[where])
         raise ValueError(
-            f"no dimensional equilibrium at gamma = {gamma!r} rad: the Hertz forces cannot carry "
-            "the weight (scaled vertical force ~ 0; at gamma = pi/2 the groove is closed and "
-            "beta_L = beta_R = 0); allowed range for dimensional results: gamma < pi/2")
+            f"no dimensional equilibrium at gamma = {gamma!r} rad, delta = {delta!r} rad: the "
+            f"scaled vertical force of the Hertz contacts, {float(np.ravel(vertical)[where]):.3g},"
+            " is not above its rounding, so no finite approach Z carries the weight (at gamma "
+            "= pi/2 the groove is closed and it is 0); allowed range for dimensional results: "
+            "gamma < pi/2, with the vertical force resolved")
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is named below
         Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
         scale = C * Z**1.5

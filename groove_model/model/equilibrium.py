@@ -242,6 +242,25 @@ def double_rolling_equation(x, upper, rho0, one_minus_rho0, K):
                     w * w * w + friction - rho0)
 
 
+def _double_rolling_root(rho0, one_minus_rho0, K) -> np.ndarray:
+    """The root of :func:`double_rolling_equation` on ``[0, 1/2]``: ``w``, or ``-v`` (``v = 1 - w``)
+    where it lies in ``v``.
+
+    The half is chosen by the sign of ``P(1/2)`` as evaluated, not by the closed form
+    ``rho0 > 1/8 + 5K/12``, which can round the other way: the chosen bracket then had no
+    sign change and a root within rounding of ``w = 1/2`` was not found. Where the two forms of
+    ``P`` both put the root beyond ``1/2`` by rounding, it is ``1/2``.
+    """
+    half = np.full(rho0.shape, 0.5)
+    upper = (double_rolling_equation(half, np.zeros(rho0.shape), rho0, one_minus_rho0, K)
+             < 0.0).astype(float)
+    x = chandrupatla(double_rolling_equation, np.zeros(rho0.shape), half,
+                     args=(upper, rho0, one_minus_rho0, K), xatol=_XATOL, xrtol=2.0 * _EPS)
+    at_half = (upper > 0.0) & (double_rolling_equation(half, upper, rho0, one_minus_rho0, K) < 0.0)
+    x[at_half] = 0.5
+    return np.where(upper > 0.0, -x, x)
+
+
 def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     r"""The double-rolling solution (``d_L = d_R = 0``) wherever it is defined.
 
@@ -293,7 +312,8 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     divided by ``n_L sin theta_R`` and by ``q_R (cos beta_R - upsilon)``, which vanish on the
     domain's edges.) Times ``1 + w``, ``P`` is the quartic
     ``w^4 + (1 + K) w^3 + (K - rho0) w - rho0``. Since ``P(1/2) >= 0`` iff
-    ``rho0 <= 1/8 + 5K/12``, the root is bracketed either in ``w`` on ``[0, 1/2]`` or in
+    ``rho0 <= 1/8 + 5K/12`` (decided by the sign of ``P(1/2)`` as evaluated, which the closed
+    form can contradict by rounding), the root is bracketed either in ``w`` on ``[0, 1/2]`` or in
     ``v = 1 - w`` on ``[0, 1/2]``, where ``P = (1 - rho0) + K f(w) - v (1 + w + w^2)`` (minus
     sign aside) is again a sum of terms of one sign; the unknown is always the small one of
     ``w, 1 - w``, so its relative accuracy carries over to ``beta_L`` (small near
@@ -320,11 +340,9 @@ def double_rolling_state(gamma, delta, params: Parameters) -> dict:
     inner = np.isnan(w) & exists & (delta > 0.0)
     v = 1.0 - w
     if np.any(inner):
-        upper = (rho0[inner] > 0.125 + (5.0 / 12.0) * K[inner]).astype(float)
-        x = chandrupatla(double_rolling_equation, np.zeros(upper.shape),
-                         np.full(upper.shape, 0.5),
-                         args=(upper, rho0[inner], walls["one_minus_rho0"][inner], K[inner]),
-                         xatol=_XATOL, xrtol=2.0 * _EPS)
+        x = _double_rolling_root(rho0[inner], walls["one_minus_rho0"][inner], K[inner])
+        upper = (x < 0.0).astype(float)  # the root was found in v = 1 - w
+        x = np.abs(x)
         w[inner] = np.where(upper > 0.0, 1.0 - x, x)
         v[inner] = np.where(upper > 0.0, x, 1.0 - x)
     kin = _kinematics(w, v, sin_g, cos_g)
