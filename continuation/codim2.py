@@ -98,7 +98,12 @@ class Codim2Point:
     s : float
         Arclength of that row.
     accuracy : float
-        Width in arclength of the final root bracket of the location.
+        Width in arclength of the final root bracket of the location: of the zero of the test
+        function as computed. For a cusp that test is a tangent component built on the fold
+        test's gradient, a difference quotient, so the point can lie further from the true
+        cusp along the curve than this (for ``lambda = p u - u^4/4 + eps u^2/2``, whose cusps
+        are ``u = +-sqrt(eps/3)``: ``3e-11`` for ``eps = 1``, ``1e-8`` for ``eps = 1e-6``); the
+        point is on the fold curve to ``residual`` all the same.
     residual : float
         ``max |F(z)|`` over the defining equations at ``z`` (for an event, including the event).
     equations : tuple of str

@@ -207,6 +207,11 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
     The compliance ratio is Mindlin's ``c(nu) = 2 (1 - nu)/(2 - nu)``
     (:meth:`~groove_model.model.parameters.Compliance.from_poisson`).
 
+    Above about ``k = 5e5`` the fold in ``gamma`` of ``rs_no_roll`` lies within about ``1e-12``
+    of the singular corner ``(pi/4, pi/4)``; where its curve meets ``delta = gamma`` there by
+    rounding (at ``k = 7e5``, ``9e5`` and ``1e6`` among those tried), the atlas fails, naming the
+    event's distance from the corner, instead of reporting a curve with a gap.
+
     Raises
     ------
     ValueError
