@@ -261,7 +261,9 @@ class Curve:
         ndarray of shape (n + 1,), or list of them
             One array if the curve crosses the value once, else a list in order
             of arclength. Each point is corrected onto the curve by Newton with
-            the border equation ``x[coordinate] = value``, not interpolated.
+            the border equation ``x[coordinate] = value``, not interpolated: to
+            ``options.event_tol``, or where the residual's noise does not allow it, to
+            ``options.tol`` like the curve's points.
 
         Raises
         ------
@@ -303,10 +305,16 @@ class Curve:
         return self.problem
 
     def _correct(self, point, border, target, where) -> np.ndarray:
+        """``point`` corrected onto the curve with ``border . x = target``: to ``event_tol``,
+        or where Newton cannot get there (a residual with noise above it, e.g. difference
+        quotients of difference quotients) to ``tol``, as the curve's own points."""
         options = self.options or Options()
-        result = correct(Evaluator(self._require_problem()), point, border,
-                         options.locate_newton, target=target,
+        evaluator = Evaluator(self._require_problem())
+        result = correct(evaluator, point, border, options.locate_newton, target=target,
                          need_tangent=False)
+        if not result.ok:
+            result = correct(evaluator, point, border, options.newton, target=target,
+                             need_tangent=False)
         if not result.ok:
             raise ValueError(f"could not correct the point at {where} onto the curve: "
                              f"{result.reason}")
