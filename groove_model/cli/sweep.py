@@ -147,11 +147,11 @@ def outputs(args) -> list:
 def run(args) -> int:
     """Trace every ``k``; write the two files and return 0, or write nothing and return 1."""
     # Imported here, not at the top: the tracer and the CSV files load the engine and pandas,
-    # which `groove --help` and `groove solve` should not wait for.
+    # and the pool multiprocessing, which `groove --help` and `groove solve` should not wait for.
     from concurrent.futures.process import BrokenProcessPool
 
-    from ..io.sweep import write_sweep
-    from ..tracing import sweep_results
+    from ..io.sweep import write_sweep  # pandas (see above)
+    from ..tracing import sweep_results  # the engine (see above)
 
     if not args.k_min <= args.k_max:
         raise UsageError(f"--k-min = {args.k_min!r} must be <= --k-max = {args.k_max!r}")
