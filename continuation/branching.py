@@ -10,11 +10,13 @@ from dataclasses import replace
 import numpy as np
 
 from .bifurcation import branch_tangent_pair
+from .corrector import correct
 from .events import Event
 from .options import Options
 from .problem import Evaluator, Problem, as_vector
-from .result import Curve, SpecialKind, SpecialPoint
-from .tracker import SINGULAR_RATIO, follow
+from .result import Curve, SpecialKind, SpecialPoint, Status
+from .run import Run
+from .tracker import SINGULAR_RATIO, UNRESOLVED, follow
 
 __all__ = ["branch_tangents", "locate_branch_point", "switch_branch"]
 
@@ -24,6 +26,12 @@ _EPS = np.finfo(float).eps
 
 #: step off an exactly singular point, relative to 1 + max|x|
 STEP_OFF = 1e-3
+
+#: the first point after a branch switch, ``d`` along the new tangent, must be within this
+#: fraction of ``theta d`` of the new tangent's line (the old branch is ``~theta d`` away) and
+#: its tangent within twice this fraction of ``theta`` of the new tangent (``theta``: the
+#: branches' angle); this fraction of ``theta d`` must exceed twice the points' accuracy
+ON_NEW_BRANCH = 0.25
 
 #: a given point on the curve whose Jacobian has a smallest-to-largest singular
 #: value ratio below this is taken as the branch point itself (rounding level)
@@ -247,7 +255,14 @@ def switch_branch(
     (:func:`branch_tangents`); the new branch is the one less parallel to the
     current branch tangent. The trace starts at the branch point without a
     correction (the bordered matrix is singular there); the first corrector
-    works in the hyperplane normal to the new tangent at distance ``ds``.
+    works in the hyperplane normal to the new tangent at distance ``h <= ds``, where it may
+    converge back to the old branch when the new one bends towards it. The first step is
+    therefore checked to land on the new branch (near the new tangent's line and with a
+    tangent near it, against the branches' angle: :func:`_on_new_branch`) and halved until it
+    does; where no step down to ``ds_min`` (or to where the points' accuracy cannot tell the
+    branches apart) does, the curve is the branch point alone with status ``STEP_TOO_SMALL``
+    and a message (raised with ``options.raise_on_failure``), never the old branch. The
+    trace's ``options.ds`` is then that first step.
     """
     options = Options() if options is None else options
     evaluator = Evaluator(problem)
@@ -269,11 +284,101 @@ def switch_branch(
     # array or tangent_hint is the caller's explicit choice and wins
     if hint is None and not (reference is not None and not isinstance(x_bp, SpecialPoint)):
         hint = found
-    new = _new_branch_tangent(*branch_tangent_pair(evaluator, x), hint, reference, direction)
+    first, second = branch_tangent_pair(evaluator, x)
+    new = _new_branch_tangent(first, second, hint, reference, direction)
     logger.info("switching branch at x=%s along tangent %s", problem.describe(x), new)
-    return follow(problem, x, None, options, events, new, evaluator=evaluator,
-                  start_mark=(SpecialKind.BRANCH_POINT, "branch point", accuracy),
-                  at_branch_point=True)
+    theta = math.acos(min(1.0, abs(float(first @ second))))
+    noise = options.tol * (1.0 + float(np.max(np.abs(x)))) + (accuracy or 0.0)
+    h = min(options.ds, options.max_arclength)
+    while True:
+        h, why = _first_step(evaluator, x, new, theta, noise, options, h)
+        if why:
+            return _switch_failed(problem, evaluator, x, new, accuracy, options, events, why)
+        curve = follow(problem, x, None, replace(options, ds=max(h, options.ds_min)), events,
+                       new, evaluator=evaluator, at_branch_point=True,
+                       start_mark=(SpecialKind.BRANCH_POINT, "branch point", accuracy))
+        if _took_first_step(curve, x, new, h, noise):
+            return curve
+        h *= 0.5  # the trace rejected the step checked here (by its own tests): a shorter one
+
+
+def _first_step(evaluator, x, new, theta, noise, options, h):
+    """``(h, "")``: the longest step ``<= h`` (halving) whose first point lands on the new
+    branch, or ``(h, reason)`` when none does down to the smallest step that can tell.
+
+    The trace's first step from a branch point is the Euler prediction ``x + h t_new``
+    corrected in the hyperplane normal to ``t_new``, where the corrector converges as readily
+    to the old branch (about ``theta h`` away, ``theta`` the branches' angle) when the new one
+    bends towards it. On the new branch the corrected point is ``O(h^2 kappa)`` from the
+    prediction and its tangent ``O(h kappa)`` from ``t_new``; both are small against ``theta h``
+    and ``theta`` once ``h`` is short against ``theta / kappa`` (:func:`_on_new_branch`).
+    The step is the trace's own (:func:`continuation.tracker.follow`), with its tests of the
+    angle and of the corrected point's distance to the curve, so the trace repeats it.
+    """
+    reason, tried = "", h
+    while h >= options.ds_min and ON_NEW_BRANCH * theta * h > 2.0 * noise:
+        c = correct(evaluator, x + h * new, new, options.newton,
+                    max_correction=options.max_correction)
+        if not c.ok:
+            reason = c.reason
+        elif float(c.tangent @ new) < math.cos(options.max_angle):
+            reason = "angle between tangents > max_angle"
+        elif c.remaining > UNRESOLVED * h:
+            reason = "the corrected point does not meet the tolerances"
+        else:
+            reason = _on_new_branch(x, new, theta, c.x, c.tangent)
+            if not reason:
+                return h, ""
+        logger.debug("first step %.3g off the branch point rejected: %s", h, reason)
+        tried, h = h, 0.5 * h
+    return h, (f"no first step from the branch point reaches the new branch: at the step "
+               f"{tried:.3g} (ds_min={options.ds_min:.3g}, and the branches, {theta:.3g} rad "
+               f"apart, must be told apart beyond the points' accuracy {noise:.3g}) the last "
+               f"rejection was: {reason or 'none'}; the new branch bends back onto the old one "
+               "faster than the steps resolve, or this is no simple branch point")
+
+
+def _on_new_branch(x, new, theta, x1, t1) -> str:
+    """Why the point ``x1`` with tangent ``t1`` is not on the branch leaving ``x`` along
+    ``new`` at the angle ``theta`` to the other ("" if it is): at ``d = (x1 - x) . new`` it must
+    lie within ``ON_NEW_BRANCH theta d`` of the line ``x + d new`` (the old branch is about
+    ``theta d`` from it) and ``t1`` within ``2 ON_NEW_BRANCH theta`` of ``new`` (on the new
+    branch of curvature ``kappa`` they are ``d^2 kappa / 2`` and ``d kappa``: the same bound on
+    ``d kappa``)
+    (Allgower & Georg, sec. 8.1: the branches leave a simple branch point along the roots of
+    the bifurcation equation)."""
+    d = float((x1 - x) @ new)
+    off = float(np.linalg.norm(x1 - x - d * new))
+    angle = math.acos(max(-1.0, min(1.0, float(t1 @ new))))
+    if not d > 0.0 or off > ON_NEW_BRANCH * theta * d:
+        return (f"the corrected point is {off:.3g} off the new branch's tangent line at "
+                f"{d:.3g} along it, more than {ON_NEW_BRANCH:g} of the branches' angle "
+                f"{theta:.3g} times that: it may be on the old branch")
+    if angle > 2.0 * ON_NEW_BRANCH * theta:
+        return (f"the tangent there is {angle:.3g} rad off the new branch's, more than "
+                f"{2.0 * ON_NEW_BRANCH:g} of the branches' angle {theta:.3g}: it may be on the old "
+                "branch")
+    return ""
+
+
+def _took_first_step(curve: Curve, x, new, h: float, noise: float) -> bool:
+    """Whether the trace's first step from the branch point was the one checked, ``h`` along
+    ``new`` (its end is in the hyperplane there): one of its points is there, or it failed (a
+    loud failure stays one), or it ended before (a terminal event on that step's arc)."""
+    along = (curve.x[1:] - x) @ new
+    if not along.size or curve.status.failed or float(along.max()) < h - 2.0 * noise:
+        return True
+    return bool(np.any(np.abs(along - h) <= 2.0 * noise))
+
+
+def _switch_failed(problem, evaluator, x, new, accuracy, options, events, why) -> Curve:
+    """The curve of a branch switch that found no first step: the branch point, and a failure
+    status (raised as :class:`ContinuationError` with ``options.raise_on_failure``)."""
+    run = Run(problem, options, tuple(events), evaluator)
+    residual = float(np.max(np.abs(evaluator.residual(x))))
+    index = run.append(x, 0.0, new, residual, 0)
+    run.mark(SpecialKind.BRANCH_POINT, "branch point", index, accuracy or 0.0)
+    return run.curve(Status.STEP_TOO_SMALL, f"{Status.STEP_TOO_SMALL.value}: {why}", x.size)
 
 
 def _branch_point(evaluator: Evaluator, problem: Problem, x_given: np.ndarray,

@@ -15,7 +15,7 @@ import numpy as np
 
 from .linalg import norm
 
-__all__ = ["arc_length", "extrapolate", "hermite"]
+__all__ = ["arc_length", "extrapolate", "hermite", "tangent_beyond"]
 
 
 def hermite(x_a, t_a, x_b, t_b, h, sigma):
@@ -126,6 +126,23 @@ def extrapolate(nodes: Sequence, h: float):
         order = 2 * len(nodes)
     x_pred, border = np.array(weights) @ np.array(vectors)
     return x_pred, border / norm(border), order
+
+
+def tangent_beyond(a, b, h: float) -> np.ndarray:
+    """The unit tangent of the cubic Hermite arc through the nodes ``a`` and ``b`` (objects with
+    ``x``, ``s`` and ``tangent``, ``a`` first), extrapolated ``h`` beyond ``b``.
+
+    What the last step predicts for the tangent at the end of the next one: on a smooth curve
+    it differs from the tangent there by the interpolant's error, a small part of the turn the
+    step control allows; a step that landed on another branch has the crossing angle between
+    them (:meth:`continuation.scan.StepScan.det_clear`). ``p'`` of :func:`hermite` at
+    ``u = 1 + h / (s_b - s_a)``, three vector operations.
+    """
+    span = b.s - a.s
+    u = 1.0 + h / span
+    derivative = (((6.0 * u - 6.0) * u / span) * (a.x - b.x)
+                  + ((3.0 * u - 4.0) * u + 1.0) * a.tangent + ((3.0 * u - 2.0) * u) * b.tangent)
+    return derivative / norm(derivative)
 
 
 def arc_length(chord: np.ndarray, alpha: float) -> float:

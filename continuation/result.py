@@ -102,9 +102,11 @@ class SpecialPoint:
         of the zero along the curve's own arc, not that of ``x``: folds and
         events are exact to it and to the Newton tolerance, a branch point
         (located on a Hermite arc across the singular point) to about
-        ``1e-11`` relative to the scale of ``x``, or where two branch points lie
-        closer than about ``sqrt(tol)`` (the branches nearly touch), to about
-        ``tol`` over their distance.
+        ``1e-11`` relative to the scale of ``x`` at tight tolerances, but no
+        better than about ``sqrt(tol)`` (there ``H`` is quadratic in the distance
+        from it: at ``tol = 5e-8`` a branch point was 2e-4 off), or where two
+        branch points lie closer than about ``sqrt(tol)`` (the branches nearly
+        touch), to about ``tol`` over their distance.
     coordinate : int or None
         The coordinate of a fold, else ``None``.
     tangent : ndarray, shape (n + 1,) or None

@@ -53,7 +53,7 @@ from .node import (
     event_value,
 )
 from .options import Options
-from .predictor import hermite
+from .predictor import hermite, tangent_beyond
 from .problem import Evaluator
 
 __all__ = ["StepScan"]
@@ -83,6 +83,10 @@ TERMINAL_NOISE = 1e-10
 
 #: a step's tangent turn may differ from its curvature's by this fraction of max_angle
 TURN_MISMATCH = 0.25
+
+#: a step's end tangent may differ from the one the step before predicts by this fraction of
+#: max_angle before the step is checked like one near a branch point (:meth:`StepScan.det_clear`)
+SURPRISE = TURN_MISMATCH
 
 #: the cubic Hermite basis (h00, h01, h10, h11) at SAMPLES, the rows of u = 1/3 and 2/3
 _SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0
@@ -379,20 +383,24 @@ class StepScan:
         locates the step's special points misrepresents it. Either way the step is too long.
         Not at a singular start (``det = 0``, no curvature there).
         """
+        mismatch = self.turn_mismatch()
+        limit = TURN_MISMATCH * self.options.max_angle
+        if mismatch > limit:
+            raise StepUnresolved(f"the step's arc bends {mismatch:.3g} rad (more than "
+                                 f"{limit:.3g}) off the curvature at its ends: the step is too "
+                                 "long for the curve's bending, or it jumped to another branch")
+
+    def turn_mismatch(self) -> float:
+        """The angle by which the step's arc bends off the curvature at its worse end
+        (:meth:`check_turn`); 0 at a singular end (no curvature there)."""
         a, b = self.nodes[0], self.nodes[-1]
         if a.det == 0.0 or b.det == 0.0:
-            return
+            return 0.0
         width = self.width
         # h p''(0) = 6 c - 4 t_a - 2 t_b = u + v, h p''(1) = v - u, with u = 6 c - 3 (t_a + t_b)
         u = (6.0 / width) * (b.x - a.x) - 3.0 * (a.tangent + b.tangent)
         v = b.tangent - a.tangent
-        start = norm(u + v - width * self.turning(a))
-        end = norm(v - u - width * self.turning(b))
-        limit = TURN_MISMATCH * self.options.max_angle
-        if max(start, end) > limit:
-            raise StepUnresolved(f"the step's arc bends {max(start, end):.3g} rad (more than "
-                                 f"{limit:.3g}) off the curvature at its ends: the step is too "
-                                 "long for the curve's bending, or it jumped to another branch")
+        return max(norm(u + v - width * self.turning(a)), norm(v - u - width * self.turning(b)))
 
     def branch_brackets(self, end: Node | None = None) -> list[tuple[Node, Node, float, float]]:
         """Brackets ``(lo, hi, det_lo, det_hi)`` of the sign changes of ``det [H'; t^T]``.
@@ -419,29 +427,49 @@ class StepScan:
         return self._brackets(lambda node: node.det, model, 0, nodes)
 
     def det_clear(self, previous: Node | None = None) -> bool:
-        """Whether the determinant's model on the whole step neither crosses nor nears zero:
-        the bound of :meth:`_clear` with the determinant's values and slopes.
+        """Whether the determinant's model on the whole step neither crosses nor nears zero
+        (the bound of :meth:`_clear` with the determinant's values and slopes), and the step
+        turns as the curve before it predicts.
 
         The slopes are those of the quadratic through the determinant at ``previous`` (the
         curve point before the step) and the step's ends, which costs nothing; where there is
         no such point (the first step, or one at a singular start), the exact slopes
         (:meth:`det_slope`, a Jacobian each). A step that is not clear is scanned with the
         exact slopes (:meth:`branch_brackets`) and checked by :meth:`check_turn`.
+
+        A step that lands on another branch across a branch point keeps the determinant's
+        sign (it changes on both branches there), so the sign alone would pass it. Its end
+        tangent is that of the other branch, the crossing angle off the one the step came
+        along: a step whose end tangent differs from the one the cubic Hermite arc of the step
+        before predicts for it (:func:`tangent_beyond`, free) by more than ``SURPRISE``
+        ``max_angle``, or, with no such arc, whose arc bends off the curvature at its ends
+        (:meth:`turn_mismatch`, from the Jacobians the exact slopes took) by as much, is not
+        clear either, and :meth:`check_turn` decides. (On a smooth curve the prediction errs by
+        a small part of the step's turn, itself below ``max_angle``: such steps are rare.) The
+        limit grows by what the points' errors, ``tol (1 + max|x|)``, can make of the two: where
+        the tolerances do not resolve the step's turn, neither can this screen.
         """
         a, b = self.nodes[0], self.nodes[-1]
         d_a, d_b = a.det, b.det
         if not _same_sign(d_a, d_b):
             return False
         width = self.width
+        limit = SURPRISE * self.options.max_angle
+        # the points' error, up to tol (1 + max|x|) each, moves the arcs' derivatives by up to
+        # the weights of the points in them over their spans: a margin on top of the limit
+        noise = 2.0 * self.options.tol * (1.0 + max_abs(b.x))
         if previous is not None and previous.det != 0.0 and previous.s < a.s:
             # divided differences: q'(s_a) = f[p,a] + f[p,a,b] h_1, q'(s_b) = ... (h_1 + 2 h_2)
             h_1 = a.s - previous.s
             first = (d_a - previous.det) / h_1
             second = ((d_b - d_a) / width - first) / (h_1 + width)
             m_a, m_b = first + second * h_1, first + second * (h_1 + 2.0 * width)
-        else:
-            m_a, m_b = self.det_slope(a), self.det_slope(b)
-        return _bounded_away(d_a, d_b, m_a, m_b, width)
+            u = 1.0 + width / h_1
+            return _bounded_away(d_a, d_b, m_a, m_b, width) and norm(
+                b.tangent - tangent_beyond(previous, a, width)) <= limit + 6.0 * u * (u - 1.0) \
+                * noise / h_1
+        return _bounded_away(d_a, d_b, self.det_slope(a), self.det_slope(b), width) \
+            and self.turn_mismatch() <= limit + 6.0 * noise / width
 
     def fold_brackets(self, i: int, noise: float = 0.0,
                       end: Node | None = None) -> list[tuple[Node, Node, float, float]]:

@@ -154,7 +154,12 @@ def trace(
     (it landed on the crossing branch near a branch point, or outran a sharp turn) is
     rejected and retaken shorter (:meth:`continuation.scan.StepScan.check_turn`); so is a step
     past a branch point whose end is not on the branch it came along (corrected from the
-    branch point along that branch's tangent, from the bifurcation equation).
+    branch point along that branch's tangent, from the bifurcation equation). A step that
+    lands on the crossing branch keeps the determinant's sign; its end tangent is off the one
+    the step before predicts by about the crossing angle, so a step whose end tangent differs
+    from that prediction by more than ``SURPRISE max_angle`` (the first step: whose arc bends
+    off the curvature at its ends by as much) is not clear either and gets the same checks
+    (:meth:`continuation.scan.StepScan.det_clear`).
 
     Known limits: a pair of branch points much closer together than a step, whose
     determinant dips and returns between the step's ends with little trace at them (a steep,
