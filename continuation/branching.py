@@ -289,7 +289,11 @@ def switch_branch(
     logger.info("switching branch at x=%s along tangent %s", problem.describe(x), new)
     theta = math.acos(min(1.0, abs(float(first @ second))))
     noise = options.tol * (1.0 + float(np.max(np.abs(x)))) + (accuracy or 0.0)
-    h = min(options.ds, options.max_arclength)
+    # a step below 2 noise / (ON_NEW_BRANCH theta) cannot tell the branches apart: a shorter
+    # ds than that starts at twice it (a 1e-3-rad crossing at tol 1e-6 and ds 1e-3 failed,
+    # where ds 1e-2 switches), within ds_max
+    shortest = 4.0 * noise / (ON_NEW_BRANCH * theta) if theta > 0.0 else 0.0
+    h = min(max(options.ds, shortest), options.ds_max, options.max_arclength)
     while True:
         h, why = _first_step(evaluator, x, new, theta, noise, options, h)
         if why:

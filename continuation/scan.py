@@ -86,7 +86,7 @@ TURN_MISMATCH = 0.25
 
 #: a step's end tangent may differ from the one the step before predicts by this fraction of
 #: max_angle before the step is checked like one near a branch point (:meth:`StepScan.det_clear`)
-SURPRISE = TURN_MISMATCH
+SURPRISE = 0.5 * TURN_MISMATCH
 
 #: the cubic Hermite basis (h00, h01, h10, h11) at SAMPLES, the rows of u = 1/3 and 2/3
 _SAMPLE_BASIS = np.array([[20.0, 7.0, 4.0, -2.0], [7.0, 20.0, 2.0, -4.0]]) / 27.0

@@ -233,3 +233,22 @@ def test_a_traced_branch_keeps_to_itself_past_all_its_crossings():
     found = [float((a @ q.x)[0]) for q in curve.special("branch_point")]
     assert found == pytest.approx([-1.4536727285166489, -0.5267337064210245,
                                    0.7544196178679694], abs=1e-8)
+
+
+@pytest.mark.parametrize("angle", [1e-3, 3e-3])
+@pytest.mark.parametrize("direction", [1, -1])
+def test_a_switch_at_a_small_angle_with_a_short_ds_starts_with_a_step_that_tells(angle,
+                                                                                 direction):
+    # two lines crossing at 1e-3 rad, tol 1e-6: a first step below ~8e-3 cannot tell them
+    # apart, and the check only halved ds = 1e-3, failing where ds = 1e-2 switches
+    slope = np.tan(angle)
+    lines = Problem(lambda z: np.array([z[1] * (z[1] - slope * z[0])]),
+                    lambda z: np.array([[-slope * z[1], 2.0 * z[1] - slope * z[0]]]))
+    box = [Event(name, lambda z, i=i, s=s: s * (z[i] - s), terminal=True)
+           for name, i, s in (("x > 1", 0, 1.0), ("x < -1", 0, -1.0))]
+    curve = switch_branch(lines, np.zeros(2), direction=direction,
+                          options=Options(tol=1e-6, ds=1e-3, ds_max=0.2), events=box,
+                          tangent_hint=[1.0, 0.0])
+    assert curve.status is Status.TERMINAL_EVENT, curve.message
+    assert abs(curve.x[-1, 0]) == pytest.approx(1.0)
+    assert np.max(np.abs(curve.x[:, 1] - slope * curve.x[:, 0])) <= 1e-5
