@@ -20,7 +20,7 @@ from .corrector import Correction, correct
 from .events import Event
 from .locate import Located, locate_zero, refine_branch_point
 from .node import LocateError, Node, StepUnresolved, event_value
-from .predictor import arc_length
+from .predictor import arc_length, hermite
 from .result import SpecialKind, SpecialPoint
 from .run import Run
 from .scan import StepScan
@@ -113,7 +113,8 @@ def scan_step(run: Run, a: Node, b: Node, previous: Node | None = None) -> list[
                 located = locate_zero(evaluator, options, lambda c: c.border_det, lo, hi, f_lo,
                                       f_hi, True)
                 if located.node is None:
-                    located = refine_branch_point(evaluator, options, located, lo, hi)
+                    refined = refine_branch_point(evaluator, options, located, lo, hi)
+                    located = refined if refined is not located else _arc_tangent(located, a, b)
                 found.append(Found(located, SpecialKind.BRANCH_POINT, "branch point", None,
                                    False))
             if found and found[-1].kind is SpecialKind.BRANCH_POINT and end is None:
@@ -249,6 +250,17 @@ def add_step(run: Run, a: Node, b: Node, found: list[Found]) -> SpecialPoint | N
     if terminal is None and b_index is None:
         append_end(run, a_index, b)
     return terminal
+
+
+def _arc_tangent(located: Located, a: Node, b: Node) -> Located:
+    """``located`` (a branch point not refined) with the tangent of the step's Hermite arc
+    there: the corrector's, from the bordered system at a singular point, is not the traced
+    branch's (it was 0.2 rad off, and ``switch_branch`` took the traced branch for the new
+    one); the arc's is, to its ``O(h^3)``."""
+    correction = cast(Correction, located.correction)
+    _, derivative = hermite(a.x, a.tangent, b.x, b.tangent, b.s - a.s, located.s - a.s)
+    correction.tangent = derivative / float(np.linalg.norm(derivative))
+    return located
 
 
 def fold_inconsistency(run: Run) -> str:

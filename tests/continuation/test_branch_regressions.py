@@ -13,7 +13,7 @@ follow them), with analytic crossings.
 import numpy as np
 import pytest
 
-from continuation import Event, Options, Problem, Status, switch_branch, trace
+from continuation import Event, Options, Problem, Status, box_events, switch_branch, trace
 
 # --- two cubics crossing twice at 0.065 and 0.209 rad, embedded in R^5 -----------------------
 # y = A x: (y1 - g1(y0)) (y1 - g2(y0)) = 0, y_k = p_k(y0, y1); crossings at y0 in CROSSINGS
@@ -252,3 +252,26 @@ def test_a_switch_at_a_small_angle_with_a_short_ds_starts_with_a_step_that_tells
     assert curve.status is Status.TERMINAL_EVENT, curve.message
     assert abs(curve.x[-1, 0]) == pytest.approx(1.0)
     assert np.max(np.abs(curve.x[:, 1] - slope * curve.x[:, 0])) <= 1e-5
+
+
+def test_a_branch_point_carries_the_tangent_of_the_traced_branch():
+    # located at the singular point itself, its tangent was the corrector's, from the bordered
+    # system there, up to 0.09 rad off the traced branch (0.2 rad in the review, where
+    # switch_branch then took the traced branch for the new one)
+    worst = 0.0
+    for c in np.linspace(-1.5, 1.5, 13):
+        for angle in (0.2, 0.3, 0.7, 1.2):
+            s, co = np.sin(angle), np.cos(angle)
+            problem = Problem(
+                lambda z, c=c, s=s, co=co: np.array([(z[1] - c * z[0] ** 2)
+                                                     * (co * z[1] - s * z[0])]),
+                lambda z, c=c, s=s, co=co: np.array([[
+                    -2.0 * c * z[0] * (co * z[1] - s * z[0]) - s * (z[1] - c * z[0] ** 2),
+                    (co * z[1] - s * z[0]) + co * (z[1] - c * z[0] ** 2)]]))
+            curve = trace(problem, [-1.0, c], direction=[1.0, 0.0], options=Options(tol=1e-10),
+                          events=box_events(upper={0: 1.0}))
+            assert curve.status is Status.TERMINAL_EVENT
+            for point in curve.special("branch_point"):
+                along = np.array([1.0, 2.0 * c * point.x[0]]) / np.hypot(1.0, 2.0 * c * point.x[0])
+                worst = max(worst, float(np.arccos(min(1.0, abs(along @ point.tangent)))))
+    assert worst <= 5e-3
