@@ -7,7 +7,7 @@ import pytest
 
 from groove_model.model.boundaries import BoundarySystem
 from groove_model.model.equilibrium import solve_equilibrium
-from groove_model.model.parameters import Parameters
+from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
 
 SQRT2 = math.sqrt(2.0)
@@ -171,3 +171,14 @@ def test_keep_unphysical_says_what_it_does_not_trace():
                    for note in trace_boundaries(10.0).notes)
     below = trace_boundaries(1.0, keep_unphysical=True)  # from the seed: nothing left out
     assert not any("rs_no_roll is traced from the junction" in note for note in below.notes)
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.3])
+@pytest.mark.parametrize("below", [1e-9, 3e-10, 1e-11])
+def test_keep_unphysical_next_below_k_branch(nu, below):
+    # within the threshold band either side's topology is accepted, but a dr_no_roll kept with
+    # no physical part (the side where it is absent) was asked to start at the branch point
+    compliance = Compliance.from_poisson(nu)
+    bs = trace_boundaries(Parameters(compliance.ratio * SQRT2 * (1.0 - below), compliance),
+                          keep_unphysical=True)
+    assert bs.ok, bs.failures
