@@ -182,3 +182,12 @@ def test_keep_unphysical_next_below_k_branch(nu, below):
     bs = trace_boundaries(Parameters(compliance.ratio * SQRT2 * (1.0 - below), compliance),
                           keep_unphysical=True)
     assert bs.ok, bs.failures
+
+
+@pytest.mark.parametrize("k", [SQRT2 * (1.0 + 1e-9), 10.0, 1e6])
+def test_s_is_the_arclength_of_the_rows_as_written(k):
+    # s was summed before the junction (from dr_no_roll) and the corner were put in place:
+    # 97% short of the chord to a junction moved by 6.7e-10 just above k_branch
+    for curve in trace_boundaries(k, keep_unphysical=True).curves.values():
+        chords = np.linalg.norm(np.diff(curve.x, axis=0), axis=1)
+        assert np.all(np.diff(curve.s) >= chords - 4.0 * np.finfo(float).eps * curve.s[1:])

@@ -267,8 +267,6 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     ``junctions``: ``(row, note, x)`` marks a junction at a row and puts it at ``x``.
     """
     x, outside = into_domain(system.to_x(curve.x))
-    diffs = np.linalg.norm(np.diff(x, axis=0), axis=1)
-    s = np.concatenate([[0.0], np.cumsum(diffs)])
     physical = np.array([system.is_physical(y, tol=PHYSICAL_TOLERANCE) for y in curve.x],
                         dtype=bool)
     marks = _Marks()
@@ -286,6 +284,9 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
         marks.add(len(x) - 1, PointKind.END, _end_note(curve, tagged, x[-1]))
         if _at_corner(x[-1]):
             x[-1] = corner_point()  # exactly the corner, where every residual vanishes
+    # the arclength of the rows as written, after the junction and the corner were put in
+    # place (before, a junction moved by 6.7e-10 from a row 1.8e-11 away had s 97% short)
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(x, axis=0), axis=1))])
 
     keep = np.ones(len(x), bool) if keep_unphysical else physical
     index_map = np.cumsum(keep) - 1
