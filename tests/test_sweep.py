@@ -291,6 +291,14 @@ def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
     assert b"\r[" in screen and b"2/2 k" in screen
 
 
+def _long_sweep(out: Path, **popen) -> subprocess.Popen:
+    """``groove sweep`` of 4000 k on 2 processes into ``out``, started, with its pipes."""
+    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    return subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3", "--k-max",
+                             "1e3", "-n", "4000", "--jobs", "2", "--out", str(out)],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, **popen)
+
+
 def _children(pid: int) -> list[int]:
     """The child processes of ``pid``, from Linux's /proc (field 4 of ``stat`` is the parent)."""
     children = []
@@ -310,11 +318,7 @@ def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
     # a forked worker inherited the parent's SIGTERM handler, which only records the signal, and
     # ran on (the sweep ended 0); a worker killed outright gave the pool's traceback
     out = tmp_path / "out"
-    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
-    process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
-                                "--k-max", "1e3", "-n", "4000", "--jobs", "2", "--out",
-                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               start_new_session=True)
+    process = _long_sweep(out, start_new_session=True)
     try:
         deadline = time.monotonic() + 120
         while not _children(process.pid) and time.monotonic() < deadline:
@@ -337,10 +341,7 @@ def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
 def test_a_terminated_sweep_leaves_no_file(signum, tmp_path):
     # SIGHUP: the terminal closed; it left the temporary files behind
     out = tmp_path / "out"
-    code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
-    process = subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3",
-                                "--k-max", "1e3", "-n", "4000", "--jobs", "2", "--out",
-                                str(out)], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    process = _long_sweep(out)
     deadline = time.monotonic() + 120
     while not (out.exists() and any(out.iterdir())) and time.monotonic() < deadline:
         time.sleep(0.05)  # until the temporary files exist

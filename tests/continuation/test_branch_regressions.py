@@ -47,43 +47,51 @@ def _monomials(y):
     return np.array([y[0], y[1], y[0] ** 2, y[0] * y[1], y[1] ** 2])
 
 
-def _cubics_residual(x):
-    y = A @ x
-    f = (y[1] - np.polyval(G1, y[0])) * (y[1] - np.polyval(G2, y[0]))
-    return np.concatenate([[f], y[2:] - P @ _monomials(y)])
+class Cubics:
+    """Two cubics ``y1 = g1(y0)``, ``y1 = g2(y0)`` crossing in the plane of ``y = a x``, the other
+    coordinates following them (``y_k = p_k . (y0, y1, y0^2, y0 y1, y1^2)``); terminal events at
+    ``y0 = +-2``."""
+
+    def __init__(self, a, g1, g2, p):
+        self.a, self.g1, self.g2, self.p = a, g1, g2, p
+        self.problem = Problem(self.residual, self.jacobian)
+        self.events = [Event(name, lambda x, c=c: float(a[0] @ x - c),
+                             gradient=lambda x: a[0], linear=True, terminal=True)
+                       for name, c in (("hi", 2.0), ("lo", -2.0))]
+
+    def residual(self, x):
+        y = self.a @ x
+        f = (y[1] - np.polyval(self.g1, y[0])) * (y[1] - np.polyval(self.g2, y[0]))
+        return np.concatenate([[f], y[2:] - self.p @ _monomials(y)])
+
+    def jacobian(self, x):
+        y = self.a @ x
+        J = np.zeros((4, 5))
+        u, v = y[1] - np.polyval(self.g1, y[0]), y[1] - np.polyval(self.g2, y[0])
+        J[0, 0] = (-np.polyval(np.polyder(self.g1), y[0]) * v
+                   - u * np.polyval(np.polyder(self.g2), y[0]))
+        J[0, 1] = u + v
+        J[1:, 0] = -(self.p @ np.array([1.0, 0.0, 2.0 * y[0], y[1], 0.0]))
+        J[1:, 1] = -(self.p @ np.array([0.0, 1.0, 0.0, y[0], 2.0 * y[1]]))
+        J[1:, 2:] = np.eye(3)
+        return J @ self.a
+
+    def on_g1(self, y0):
+        y1 = np.polyval(self.g1, y0)
+        return np.linalg.solve(self.a, np.concatenate([[y0, y1], self.p @ _monomials([y0, y1])]))
+
+    def distances(self, curve):
+        """The largest distances of the curve's points from g1 and g2 (in y1)."""
+        Y = curve.x @ self.a.T
+        return (float(np.max(np.abs(Y[:, 1] - np.polyval(self.g1, Y[:, 0])))),
+                float(np.max(np.abs(Y[:, 1] - np.polyval(self.g2, Y[:, 0])))))
 
 
-def _cubics_jacobian(x):
-    y = A @ x
-    J = np.zeros((4, 5))
-    a, b = y[1] - np.polyval(G1, y[0]), y[1] - np.polyval(G2, y[0])
-    J[0, 0] = -np.polyval(np.polyder(G1), y[0]) * b - a * np.polyval(np.polyder(G2), y[0])
-    J[0, 1] = a + b
-    J[1:, 0] = -(P @ np.array([1.0, 0.0, 2.0 * y[0], y[1], 0.0]))
-    J[1:, 1] = -(P @ np.array([0.0, 1.0, 0.0, y[0], 2.0 * y[1]]))
-    J[1:, 2:] = np.eye(3)
-    return J @ A
-
-
-CUBICS = Problem(_cubics_residual, _cubics_jacobian)
-CUBIC_EVENTS = [Event("hi", lambda x: float(A[0] @ x - 2.0), gradient=lambda x: A[0],
-                      linear=True, terminal=True),
-                Event("lo", lambda x: float(A[0] @ x + 2.0), gradient=lambda x: A[0],
-                      linear=True, terminal=True)]
+PAIR = Cubics(A, G1, G2, P)
+CUBICS, CUBIC_EVENTS = PAIR.problem, PAIR.events
 CUBIC_OPTIONS = Options(tol=2.8229630938921816e-10, ds=0.05, ds_max=0.1201193596059635,
                         max_steps=20000)
-
-
-def _on_g1(y0):
-    y1 = np.polyval(G1, y0)
-    return np.linalg.solve(A, np.concatenate([[y0, y1], P @ _monomials([y0, y1])]))
-
-
-def _distances(curve):
-    """The largest distances of the curve's points from the cubics g1 and g2 (in y1)."""
-    Y = curve.x @ A.T
-    return (float(np.max(np.abs(Y[:, 1] - np.polyval(G1, Y[:, 0])))),
-            float(np.max(np.abs(Y[:, 1] - np.polyval(G2, Y[:, 0])))))
+_on_g1, _distances = PAIR.on_g1, PAIR.distances
 
 
 @pytest.fixture(scope="module")
@@ -198,38 +206,15 @@ def test_a_traced_branch_keeps_to_itself_past_all_its_crossings():
         [-0.06756824481107009, -0.9042325062053423, 0.1120649107049703, -0.17404162509167104,
          -0.06516639587087744]])
 
-    def residual(x):
-        y = a @ x
-        f = (y[1] - np.polyval(g1, y[0])) * (y[1] - np.polyval(g2, y[0]))
-        return np.concatenate([[f], y[2:] - p @ _monomials(y)])
-
-    def jacobian(x):
-        y = a @ x
-        J = np.zeros((4, 5))
-        u, v = y[1] - np.polyval(g1, y[0]), y[1] - np.polyval(g2, y[0])
-        J[0, 0] = -np.polyval(np.polyder(g1), y[0]) * v - u * np.polyval(np.polyder(g2), y[0])
-        J[0, 1] = u + v
-        J[1:, 0] = -(p @ np.array([1.0, 0.0, 2.0 * y[0], y[1], 0.0]))
-        J[1:, 1] = -(p @ np.array([0.0, 1.0, 0.0, y[0], 2.0 * y[1]]))
-        J[1:, 2:] = np.eye(3)
-        return J @ a
-
-    def on_g1(y0):
-        y1 = np.polyval(g1, y0)
-        return np.linalg.solve(a, np.concatenate([[y0, y1], p @ _monomials([y0, y1])]))
-
-    events = [Event("hi", lambda x: float(a[0] @ x - 2.0), gradient=lambda x: a[0],
-                    linear=True, terminal=True),
-              Event("lo", lambda x: float(a[0] @ x + 2.0), gradient=lambda x: a[0],
-                    linear=True, terminal=True)]
-    curve = trace(Problem(residual, jacobian), on_g1(-1.999),
-                  direction=on_g1(-1.999 + 1e-6) - on_g1(-1.999), events=events,
+    other = Cubics(a, g1, g2, p)
+    curve = trace(other.problem, other.on_g1(-1.999),
+                  direction=other.on_g1(-1.999 + 1e-6) - other.on_g1(-1.999),
+                  events=other.events,
                   options=Options(tol=1.503993645572423e-11, ds=0.05,
                                   ds_max=0.2747161072617414, max_steps=20000))
     assert curve.status is Status.TERMINAL_EVENT, curve.message
     assert curve.special_points[-2].name == "hi"
-    Y = curve.x @ a.T
-    assert np.max(np.abs(Y[:, 1] - np.polyval(g1, Y[:, 0]))) < 1e-8
+    assert other.distances(curve)[0] < 1e-8
     found = [float((a @ q.x)[0]) for q in curve.special("branch_point")]
     assert found == pytest.approx([-1.4536727285166489, -0.5267337064210245,
                                    0.7544196178679694], abs=1e-8)
