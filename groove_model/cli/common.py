@@ -129,12 +129,19 @@ def _number(text: str, message: str) -> float:
         raise argparse.ArgumentTypeError(message) from None
 
 
-def _argument(check, value: float) -> float:
-    """``check(value)``, its ``ValueError`` turned into argparse's error (same message)."""
+def _argument(check, value: float, text: str) -> float:
+    """``check(value)``, its ``ValueError`` turned into argparse's error (same message), which
+    also says so where the number typed, ``text``, is not a double (``1e-400`` reads as 0)."""
     try:
         return check(value)
     except ValueError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
+        message = str(exc)
+        typed = text.strip().lower().lstrip("+-")
+        if value == 0.0 and any(c in "123456789" for c in typed.partition("e")[0]):
+            message += f" ({text} is below the smallest double and reads as 0)"
+        elif math.isinf(value) and "inf" not in typed:
+            message += f" ({text} is beyond the largest double and reads as {value!r})"
+        raise argparse.ArgumentTypeError(message) from None
 
 
 def positive_integer(name: str):
@@ -186,7 +193,7 @@ def friction(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_friction
 
-    return _argument(check_friction, value)
+    return _argument(check_friction, value, text)
 
 
 def traced_friction(text: str) -> float:
@@ -197,7 +204,7 @@ def traced_friction(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_friction
 
-    return _argument(check_traced_friction, value)
+    return _argument(check_traced_friction, value, text)
 
 
 def add_friction(parser: argparse.ArgumentParser, required: bool = True, help: str = "",
@@ -346,7 +353,7 @@ def poisson(text: str) -> float:
 
     value = _number(text, f"Poisson ratio nu = {text!r} is not a number; allowed range "
                           f"{POISSON_RANGE[0]:g} < nu <= {POISSON_RANGE[1]:g}")
-    return _argument(check_poisson, value)
+    return _argument(check_poisson, value, text)
 
 
 def _ratio(text: str) -> float:
@@ -370,7 +377,7 @@ def _traced_ratio(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_traced_ratio
 
-    return _argument(check_traced_ratio, value)
+    return _argument(check_traced_ratio, value, text)
 
 
 def traced_poisson(text: str) -> float:
@@ -380,7 +387,7 @@ def traced_poisson(text: str) -> float:
 
     value = _number(text, f"Poisson ratio nu = {text!r} is not a number; allowed range "
                           "0 <= nu <= 0.5")
-    return _argument(check_traced_poisson, value)
+    return _argument(check_traced_poisson, value, text)
 
 
 def add_compliance_options(parser, poisson_help: str = "", traced: bool = True) -> None:
