@@ -340,6 +340,13 @@ def test_default_audit_runs_in_seconds(capsys):
      "grid resolution N = 1 is outside the allowed range 2 <= N <= 20000"),
     (["map", "-k", "1", "-o", "m.png", "--resolution", "x"],
      "grid resolution N = 'x' is not an integer"),
+    # a number that is no double is named as typed too (it read "k = 0.0" alone)
+    (["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1e-400"],
+     "k = 0.0 is outside the allowed range: k must be finite and > 0 (1e-400 is below the "
+     "smallest double and reads as 0)"),
+    (["map", "-k", "1e400", "-o", "m.png"], "(1e400 is beyond the largest double and reads as inf)"),
+    (["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1", "--poisson", "-7e400"],
+     "(-7e400 is beyond the largest double and reads as -inf)"),
 ])
 def test_bad_arguments_exit_2_naming_the_quantity(argv, message, capsys):
     with pytest.raises(SystemExit) as exc:
