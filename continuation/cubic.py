@@ -16,16 +16,19 @@ import numpy as np
 
 __all__ = [
     "APPROACH",
+    "CLEAR",
     "MODEL_TOL",
     "NEAR_ZERO",
     "SAMPLES",
     "SPLIT_MARGIN",
     "ZERO_COUNT_GRID",
+    "bounded_away",
     "critical_points",
     "cubic",
     "cubic_derivative",
     "cubic_value",
-        "error_term",
+    "error_term",
+    "same_sign",
     "samples_disagree",
     "sign_changes",
     "split_point",
@@ -33,6 +36,10 @@ __all__ = [
 
 #: a model extremum this close to zero, relative to the end values, is checked by a node
 APPROACH = 0.5
+
+#: a function is clear of zero on a step when its cubic model provably stays above this
+#: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
+CLEAR = APPROACH + 0.1 * (1.0 - APPROACH)
 
 #: a split point is kept this far (as a fraction) from the ends of its interval
 SPLIT_MARGIN = 0.01
@@ -50,6 +57,23 @@ MODEL_TOL = 0.1
 
 #: ... and matters where the model comes closer to zero than this many times the error term
 NEAR_ZERO = 4.0
+
+
+def same_sign(f_a: float, f_b: float) -> bool:
+    """Whether two end values are both positive or both negative (neither zero)."""
+    return (f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)
+
+
+def bounded_away(f_a: float, f_b: float, m_a: float, m_b: float, width: float) -> bool:
+    """Whether the cubic Hermite model with end values ``f_a, f_b`` of one sign and end slopes
+    ``m_a, m_b`` (per unit arclength, over ``width``) provably stays above :data:`CLEAR` times
+    the smaller end value.
+
+    The model is ``P = f_a h00 + f_b h01 + m_a h10 + m_b h11`` with ``h00 + h01 = 1``,
+    ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on ``[0, 1]``, so for end values of one sign
+    ``|P| >= min(|f_a|, |f_b|) - (4/27) width (|m_a| + |m_b|)``.
+    """
+    return (4.0 / 27.0) * width * (abs(m_a) + abs(m_b)) <= (1.0 - CLEAR) * min(abs(f_a), abs(f_b))
 
 
 def cubic(f0: float, m0: float, f1: float, m1: float) -> tuple[float, float, float, float]:
@@ -106,8 +130,8 @@ def samples_disagree(c, deltas: tuple[float, float], f_lo: float, f_hi: float) -
         return False
     critical = [cubic_value(c, u) for u in critical_points(c)]
     values = [f_lo, *critical, f_hi]
-    same_sign = all((v > 0.0) == (f_lo > 0.0) for v in values)
-    nearest = min(map(abs, values)) if same_sign else 0.0
+    one_sign = all((v > 0.0) == (f_lo > 0.0) for v in values)
+    nearest = min(map(abs, values)) if one_sign else 0.0
     if nearest > NEAR_ZERO * (abs(alpha) + abs(beta)) / 16.0:
         return False
     if max(map(abs, deltas)) > MODEL_TOL * max(map(abs, values)):

@@ -28,15 +28,17 @@ import numpy as np
 
 from .corrector import correct
 from .cubic import (
-    APPROACH,
+    CLEAR,
     NEAR_ZERO,
     SAMPLES,
     SPLIT_MARGIN,
+    bounded_away,
     critical_points,
     cubic,
     cubic_derivative,
     cubic_value,
     error_term,
+    same_sign,
     samples_disagree,
     split_point,
 )
@@ -68,10 +70,6 @@ SLOPE_STEP = 1e-6
 #: 1/3**RESOLVE_DEPTH of the step): the resolution of events faster than the step
 RESOLVE_DEPTH = 3
 
-#: an event is clear of zero on a step when its cubic model provably stays above this
-#: fraction of its smaller end value (a margin above ``APPROACH``, so rounding cannot matter)
-CLEAR = APPROACH + 0.1 * (1.0 - APPROACH)
-
 #: most nodes a step may need before its scan is declared unresolvable
 MAX_NODES = 200
 
@@ -101,19 +99,6 @@ def _event_slope(event: Event, node: Node, describe) -> float:
     forward, backward = x + step * t, x - step * t
     width = float((forward - backward) @ t)
     return (event_value(event, forward, describe) - event_value(event, backward, describe)) / width
-
-
-def _same_sign(f_a: float, f_b: float) -> bool:
-    """Whether two end values are both positive or both negative (neither zero)."""
-    return (f_a > 0.0 and f_b > 0.0) or (f_a < 0.0 and f_b < 0.0)
-
-
-def _bounded_away(f_a: float, f_b: float, m_a: float, m_b: float, width: float) -> bool:
-    """Whether the cubic Hermite model with end values ``f_a, f_b`` of one sign and end slopes
-    ``m_a, m_b`` (per unit arclength, over ``width``) provably stays above ``CLEAR`` times the
-    smaller end value: ``|P| >= min(|f_a|, |f_b|) - (4/27) width (|m_a| + |m_b|)``
-    (:meth:`StepScan._clear` has the bound)."""
-    return (4.0 / 27.0) * width * (abs(m_a) + abs(m_b)) <= (1.0 - CLEAR) * min(abs(f_a), abs(f_b))
 
 
 class StepScan:
@@ -170,6 +155,7 @@ class StepScan:
         #: the events there, by interval and event, and the corrected points there
         self._arc_events: dict[tuple[float, float, int], tuple[float, float]] = {}
         self._corrected_samples: dict[tuple[float, float], list[Node]] = {}
+        self._linear_clears: frozenset[int] | None = None
 
     # --- nodes --------------------------------------------------------------------------
     def node_at(self, s: float) -> Node:
@@ -330,19 +316,31 @@ class StepScan:
         return points
 
     def _clear(self, j: int) -> bool:
-        """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero.
-
-        The cubic Hermite model is ``P = f_a h00 + f_b h01 + m_a h10 + m_b h11`` with
-        ``h00 + h01 = 1``, ``h00, h01 >= 0`` and ``|h10|, |h11| <= 4/27`` on ``[0, 1]``, so
-        for end values of one sign ``|P| >= min(|f_a|, |f_b|) - (4/27)(|m_a| + |m_b|)``. When
-        that stays above ``CLEAR`` times the smaller end value, the full scan would find no
-        sign change and no extremum within ``APPROACH`` of zero: it brackets nothing, and this
-        test says so without building the model (the common case on most steps).
-        """
+        """Whether event ``j``'s model on the whole step provably neither crosses nor nears zero
+        (:func:`~continuation.cubic.bounded_away`): the full scan would find no sign change and
+        no extremum within ``APPROACH`` of zero, so it brackets nothing, and this test says so
+        without building the model (the common case on most steps)."""
         a, b = self.nodes
         f_a, f_b = a.events[j], b.events[j]
-        return _same_sign(f_a, f_b) and _bounded_away(f_a, f_b, self.slope(a, j),
-                                                      self.slope(b, j), b.s - a.s)
+        if not same_sign(f_a, f_b):
+            return False
+        if self.events[j].linear and j in self._linear_clear():
+            return True
+        return bounded_away(f_a, f_b, self.slope(a, j), self.slope(b, j), b.s - a.s)
+
+    def _linear_clear(self) -> frozenset[int]:
+        """The linear events that :meth:`_clear` clears, tested at once (their slopes ``a . t``
+        at both ends are one product; computed once per step). One that is not listed is
+        tested again alone, with the slopes the rest of the scan uses."""
+        if self._linear_clears is None:
+            a, b = self.nodes
+            tangents = np.array((a.tangent, b.tangent)).T
+            slopes = (self.linear.gradients(a.x, self.describe) @ tangents).tolist()
+            width = b.s - a.s
+            self._linear_clears = frozenset(
+                j for j, (m_a, m_b) in zip(self.linear.indices, slopes, strict=True)
+                if bounded_away(a.events[j], b.events[j], m_a, m_b, width))
+        return self._linear_clears
 
     def add(self, node: Node) -> None:
         """Insert a located curve point (e.g. a terminal event) as a node of the step."""
@@ -451,7 +449,7 @@ class StepScan:
         """
         a, b = self.nodes[0], self.nodes[-1]
         d_a, d_b = a.det, b.det
-        if not _same_sign(d_a, d_b):
+        if not same_sign(d_a, d_b):
             return False
         width = self.width
         limit = SURPRISE * self.options.max_angle
@@ -465,10 +463,10 @@ class StepScan:
             second = ((d_b - d_a) / width - first) / (h_1 + width)
             m_a, m_b = first + second * h_1, first + second * (h_1 + 2.0 * width)
             u = 1.0 + width / h_1
-            return _bounded_away(d_a, d_b, m_a, m_b, width) and norm(
+            return bounded_away(d_a, d_b, m_a, m_b, width) and norm(
                 b.tangent - tangent_beyond(previous, a, width)) <= limit + 6.0 * u * (u - 1.0) \
                 * noise / h_1
-        return _bounded_away(d_a, d_b, self.det_slope(a), self.det_slope(b), width) \
+        return bounded_away(d_a, d_b, self.det_slope(a), self.det_slope(b), width) \
             and self.turn_mismatch() <= limit + 6.0 * noise / width
 
     def fold_brackets(self, i: int, noise: float = 0.0,
