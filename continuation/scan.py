@@ -155,7 +155,6 @@ class StepScan:
         #: the events there, by interval and event, and the corrected points there
         self._arc_events: dict[tuple[float, float, int], tuple[float, float]] = {}
         self._corrected_samples: dict[tuple[float, float], list[Node]] = {}
-        self._linear_clears: frozenset[int] | None = None
 
     # --- nodes --------------------------------------------------------------------------
     def node_at(self, s: float) -> Node:
@@ -322,25 +321,24 @@ class StepScan:
         without building the model (the common case on most steps)."""
         a, b = self.nodes
         f_a, f_b = a.events[j], b.events[j]
-        if not same_sign(f_a, f_b):
-            return False
-        if self.events[j].linear and j in self._linear_clear():
-            return True
-        return bounded_away(f_a, f_b, self.slope(a, j), self.slope(b, j), b.s - a.s)
+        return same_sign(f_a, f_b) and bounded_away(f_a, f_b, self.slope(a, j),
+                                                    self.slope(b, j), b.s - a.s)
 
-    def _linear_clear(self) -> frozenset[int]:
-        """The linear events that :meth:`_clear` clears, tested at once (their slopes ``a . t``
-        at both ends are one product; computed once per step). One that is not listed is
-        tested again alone, with the slopes the rest of the scan uses."""
-        if self._linear_clears is None:
-            a, b = self.nodes
+    def candidates(self) -> list[int]:
+        """The events that may vanish in the step: all but the linear ones that :meth:`_clear`
+        clears, tested at once (their end slopes ``a . t`` are one product). A linear event
+        not cleared here is tested again in :meth:`event_brackets`, alone, with the slopes the
+        rest of the scan uses."""
+        a, b = self.nodes
+        clear = set()
+        if self.linear.indices and len(self.nodes) == 2:
             tangents = np.array((a.tangent, b.tangent)).T
             slopes = (self.linear.gradients(a.x, self.describe) @ tangents).tolist()
             width = b.s - a.s
-            self._linear_clears = frozenset(
-                j for j, (m_a, m_b) in zip(self.linear.indices, slopes, strict=True)
-                if bounded_away(a.events[j], b.events[j], m_a, m_b, width))
-        return self._linear_clears
+            clear = {j for j, (m_a, m_b) in zip(self.linear.indices, slopes, strict=True)
+                     if same_sign(a.events[j], b.events[j])
+                     and bounded_away(a.events[j], b.events[j], m_a, m_b, width)}
+        return [j for j in range(len(self.events)) if j not in clear]
 
     def add(self, node: Node) -> None:
         """Insert a located curve point (e.g. a terminal event) as a node of the step."""

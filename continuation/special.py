@@ -73,8 +73,8 @@ def scan_step(run: Run, a: Node, b: Node, previous: Node | None = None) -> list[
     found: list[Found] = []
     what = "a special point"
     try:
-        brackets = [(j, bracket) for j, event in enumerate(run.events)
-                    for bracket in scan.event_brackets(j, event.direction)]
+        brackets = [(j, bracket) for j in scan.candidates()
+                    for bracket in scan.event_brackets(j, run.events[j].direction)]
         end = None  # where the curve ends: the first terminal zero located so far
         for j, (lo, hi, f_lo, f_hi) in sorted(brackets, key=lambda item: _locate_order(
                 run.events[item[0]], item[0], *item[1])):
