@@ -99,8 +99,11 @@ SAME_POINT = 1e-7
 COINCIDENT = 1e-9
 
 #: a threshold this close to the singular corner (pi/4, pi/4) (max-norm in gamma and delta) is
-#: not resolved: the fold of rs_no_roll lies ~0.37/k^2 from it (4e-13 at k = 1e6), below the
-#: tracer's tolerance, and its events there (delta = gamma) are rounding; the atlas fails
+#: not resolved, and the atlas fails instead of reporting it: the fold of rs_no_roll lies
+#: ~0.37/k^2 from it (4e-13 at k = 1e6), below the points' accuracy. Its event delta = gamma is
+#: computed in a form exact there (families.edge_event: it vanishes only at beta_L = 0, which
+#: no fold reaches at a finite k), so this is a safeguard, which none of the atlases checked
+#: trips; gamma - delta itself vanished there by rounding (k = 7e5 in nu, say)
 CORNER_RESOLUTION = 1e-10
 
 
@@ -207,10 +210,12 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
     The compliance ratio is Mindlin's ``c(nu) = 2 (1 - nu)/(2 - nu)``
     (:meth:`~groove_model.model.parameters.Compliance.from_poisson`).
 
-    Above about ``k = 5e5`` the fold in ``gamma`` of ``rs_no_roll`` lies within about ``1e-12``
-    of the singular corner ``(pi/4, pi/4)``; where its curve meets ``delta = gamma`` there by
-    rounding (at ``k = 7e5``, ``9e5`` and ``1e6`` among those tried), the atlas fails, naming the
-    event's distance from the corner, instead of reporting a curve with a gap.
+    At large ``k`` the fold in ``gamma`` of ``rs_no_roll`` lies within about ``1e-12`` of the
+    singular corner ``(pi/4, pi/4)`` (``beta_L = (2c/(3k))^2``, ``gamma - delta ~
+    8 c^3/(27 k^2)``), closer than its points resolve ``gamma - delta``; its event
+    ``delta = gamma`` is computed in a form exact there
+    (:func:`~groove_model.tracing.families.edge_event`), which vanishes only at the corner
+    itself, so the fold's curve runs over the whole range for every ``k`` of the traced range.
 
     Raises
     ------

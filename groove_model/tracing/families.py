@@ -36,8 +36,8 @@ from ..model.boundaries import BoundarySystem, Condition, dr_no_roll_branch_poin
 from ..model.parameters import Compliance, Parameters
 from .assembly import into_domain
 
-__all__ = ["AXES", "START_OPTIONS", "Axis", "BoundaryFamily", "domain_events", "junction_event",
-           "special_points"]
+__all__ = ["AXES", "START_OPTIONS", "Axis", "BoundaryFamily", "domain_events", "edge_event",
+           "junction_event", "special_points"]
 
 AXES = ("k", "nu")
 
@@ -207,17 +207,57 @@ def _unit(index: int, other: float = 0.0, other_index: int = 0):
 
 def domain_events(family: BoundaryFamily) -> list[Event]:
     """Terminal events of ``z`` where a special point leaves ``0 <= delta <= gamma <= pi/2``
-    or ``beta_L, beta_R >= 0``; ``delta = 0`` is where one is born or dies on the axis."""
+    or ``beta_L, beta_R >= 0``; ``delta = 0`` is where one is born or dies on the axis.
+
+    ``delta = gamma`` is ``gamma - delta`` on the limit curve and :func:`edge_event` on the
+    ``upsilon = 0`` boundaries."""
     half_pi = 0.5 * math.pi
+    if family.boundary.endswith("no_roll"):
+        edge = edge_event(family)
+    else:
+        edge = Event("delta = gamma", lambda z: z[0] - z[1], -1, True, _unit(0, -1.0, 1),
+                     linear=True)
     return [
         Event("delta = 0", lambda z: z[1], -1, True, _unit(1), linear=True),
-        Event("delta = gamma", lambda z: z[0] - z[1], -1, True, _unit(0, -1.0, 1),
-              linear=True),
+        edge,
         Event("gamma = pi/2", lambda z: half_pi - family.scale(z[-1]) * z[0], -1, True),
         Event("beta_L = 0", lambda z: z[2], -1, True, _unit(2), linear=True),
         Event("beta_R = 0", lambda z: math.pi - 2.0 * family.scale(z[-1]) * z[0] - z[2] ** 2,
               -1, True),
     ]
+
+
+def edge_event(family: BoundaryFamily) -> Event:
+    r"""``delta = gamma`` on ``rs_no_roll`` or ``dr_no_roll``, in a form computed to relative
+    accuracy near the corner ``(pi/4, pi/4)``.
+
+    On these boundaries (``upsilon = 0``, ``n = s q``) the horizontal balance gives
+    ``n_R sin(gamma - delta) = q_L P``, with ``P = s_L (sin theta_L + k D)`` (``rs_no_roll``)
+    or ``s_L sin theta_L + c cos(beta_L) D`` (``dr_no_roll``), ``D = 2 sin(gamma) sin(delta)``.
+    As ``n_R > 0`` for ``0 < beta_R < pi``, on the boundary ``gamma - delta`` has the sign of
+    ``q_L P n_R``; the event is that function
+    (:meth:`~groove_model.model.boundaries.BoundarySystem.edge_function`, without the factor
+    ``s_L > 0`` on ``rs_no_roll``): the same event as ``gamma - delta``, with the same sign at
+    every point of the boundary and the same zeros. For ``0 <= delta <= gamma < pi/2`` (not
+    both 0) ``P > 0`` on ``rs_no_roll``, and on ``dr_no_roll`` wherever ``beta_L <= pi/2``
+    (near the corner): there its only zero is where ``q_L`` (odd in ``w``) changes sign, the
+    corner ``beta_L = 0`` itself, where the event ``beta_L = 0`` fires with it. A special point
+    of ``rs_no_roll`` with ``beta_L > 0`` is strictly inside, ``delta < gamma``, however close
+    to the corner.
+
+    Why not ``gamma - delta`` itself: near the corner it is tiny. The fold in ``gamma`` of
+    ``rs_no_roll`` is where ``c q_R cos beta_R - k n_L`` (free of ``delta``) and its derivative
+    in ``w`` vanish: ``w = 2c/(3k)``, ``gamma - pi/4 ~ -(2/27) (c/k)^2``, and from the balance
+    ``gamma - delta ~ (1 + k) w^3 ~ 8 c^3/(27 k^2)``, ``3e-13`` at ``k = 1e6``, ``c = 1``
+    (these agree with the system solved in 60 digits to a relative ``5e-11`` for ``k >= 1e5``).
+    That is below the points' accuracy in ``gamma`` and ``delta`` (residuals to ``1e-12``: a few
+    ``1e-13``), and the curve of that fold in ``nu`` met ``delta = gamma`` by rounding (at
+    ``k = 7e5``, ``nu = 0.3005``, where the true ``gamma - delta`` is ``3.37e-13``). This event
+    is ``~ (1 + k) w ~ 2c/3`` there, and its rounding relative.
+    """
+    def function(z):
+        return family.system(z[-1]).edge_function(z[:4])
+    return Event("delta = gamma", function, -1, True)
 
 
 def junction_event(axis: Axis) -> Event:
