@@ -221,7 +221,7 @@ class Jet:
     """A number with its first (``d``) and optional second (``dd``) derivative in one direction.
 
     ``v``, ``d`` and ``dd`` are base numbers (floats or balls); ``dd`` is ``None`` for
-    first-order jets. Comparisons and ``abs`` act on the value (for branches only).
+    first-order jets. Comparisons act on the value (for branches only); ``abs`` is a jet.
     """
 
     __slots__ = ("v", "d", "dd")
@@ -280,7 +280,14 @@ class Jet:
         raise ValueError(f"Jet ** {n!r}: only the exponents 2 and 3 are supported")
 
     def __abs__(self):
-        return abs(self.v)
+        """``|x|`` as a jet: ``x`` or ``-x`` where the value has one sign (for balls: every
+        value); where it may be 0, ``|x|`` has no derivative and they are NaN (a proof fails)."""
+        if self.v > 0.0:
+            return self
+        if self.v < 0.0:
+            return -self
+        return Jet(abs(self.v), self.d * math.nan,
+                   None if self.dd is None else self.dd * math.nan)
 
     def __lt__(self, other):
         return self.v < (other.v if type(other) is Jet else other)

@@ -1,11 +1,14 @@
 """The numbers namespaces: floats as math, balls only when python-flint is there."""
 
+import dataclasses
 import math
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
+from continuation import Event, Options, Problem, certify, trace
 from continuation.numbers import FLOATS, Jet, balls, jets, require_flint
 
 
@@ -84,3 +87,39 @@ def test_a_nan_derivative_makes_the_remainder_nan():
     args = (B.number(0.4), Jet(B.number(0.7), B.arb("nan")))
     error = jets(B).analytic_error(lambda intervals, w: 1e-9 * math.cosh(2.0 * w), args)
     assert not B.is_finite(error.d)
+
+
+def test_abs_of_a_jet_keeps_its_derivatives_or_makes_them_nan():
+    """``abs`` on a jet returned its value alone: a formula with ``abs`` (of an argument that
+    keeps one sign, so it is smooth) lost its derivatives, and ``certify`` proved an event with
+    two zeros on a segment monotone, with none (``abs(u^2 + 0.01)`` along a line)."""
+    pytest.importorskip("flint")
+    B = balls()
+    for base in (FLOATS, B):
+        m = jets(base)
+        x = Jet(base.number(-0.5), base.number(2.0), base.number(1.0))
+        y = abs(m.sin(x))  # sin(-0.5) < 0: |sin x| = -sin x
+        s = m.sin(x)
+        assert type(y) is Jet
+        for got, want in ((y.v, s.v), (y.d, s.d), (y.dd, s.dd)):
+            assert float(got) == pytest.approx(-float(want), rel=1e-15)
+        assert abs(x) > 0.4 and abs(x) < 0.6  # still a comparison of the value
+    straddling = abs(Jet(B.arb(0, 1e-3), B.number(1.0), B.number(0.0)))
+    assert straddling.v.contains(0.0) and not B.is_finite(straddling.d)
+    assert not B.is_finite(straddling.dd)
+
+
+def test_an_event_written_with_abs_is_not_proven_monotone_across_its_zeros():
+    pytest.importorskip("flint")
+    line = Problem(lambda x, m=FLOATS: [x[1]], lambda x, m=FLOATS: [[0.0 * x[0], 1.0]])
+    event = Event("phi", lambda x, m=FLOATS: abs((x[0] - 0.5) * (x[0] - 0.5) + 0.01) - 0.05
+                  + 1e-3 * x[0])  # > 0 at x = 0 and 1, < 0 at x = 1/2
+    traced = trace(line, [0.0, 0.0], direction=[1.0, 0.0],
+                   options=Options(ds=0.5, ds_max=1.0, max_steps=2))
+    curve = dataclasses.replace(traced, x=np.array([[0.0, 0.0], [1.0, 0.0]]),
+                                tangents=np.array([[1.0, 0.0], [1.0, 0.0]]),
+                                s=np.array([0.0, 1.0]), ds=traced.ds[:2],
+                                newton_iterations=traced.newton_iterations[:2],
+                                residuals=traced.residuals[:2], special_points=())
+    cert = certify(curve, line, [event], fold_coordinates=())
+    assert not cert.proven and "phi" in cert.message, cert.message
