@@ -170,6 +170,8 @@ class Frame:
         to the second point (the curve is off it by ``kappa L^2``)."""
         t = [a + b for a, b in zip(t_a, t_b, strict=True)]
         size = math.sqrt(sum(tj * tj for tj in t))
+        if not (size > 0.0 and math.isfinite(size)):
+            return "its tangents cancel or are not finite (a segment too short for its chord)"
         v = [tj / size for tj in t]
         p = max(range(len(v)), key=lambda j: abs(v[j]))
         length = d[p] / v[p]

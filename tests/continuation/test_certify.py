@@ -668,3 +668,18 @@ def test_a_curve_reported_closed_must_end_on_its_first_point():
 
 UNIT_CIRCLE = Problem(lambda x, m=FLOATS: [x[0] * x[0] + x[1] * x[1] - 1.0],
                       lambda x, m=FLOATS: [[2.0 * x[0], 2.0 * x[1]]])
+
+
+def test_a_short_segment_with_opposite_tangents_fails_instead_of_raising():
+    """A segment below ``1e-6 (1 + |x|)`` is framed along its mean tangent; tangents that
+    cancel raised ZeroDivisionError instead of a failed check."""
+    curve = trace(circles(), [1.0, 0.0], options=Options(max_steps=3))
+    a = np.array([math.cos(0.1), math.sin(0.1)])
+    b = np.array([math.cos(0.1 + 1e-8), math.sin(0.1 + 1e-8)])
+    short = dataclasses.replace(curve, x=np.array([a, b]),
+                                tangents=np.array([[-a[1], a[0]], [a[1], -a[0]]]),
+                                s=np.array([0.0, 1e-8]), ds=curve.ds[:2],
+                                newton_iterations=curve.newton_iterations[:2],
+                                residuals=curve.residuals[:2], special_points=())
+    cert = certify(short, circles(), fold_coordinates=())
+    assert not cert.proven and cert.check is Check.TUBE and cert.segment == 0, cert.message
