@@ -520,7 +520,8 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     problem : Problem or object
         ``residual(x, numbers)`` (n values) and ``jacobian(x, numbers)`` (n rows of n + 1),
         written over a numbers namespace (:mod:`continuation.numbers`); called with floats,
-        balls and jets.
+        balls and jets. The proof takes ``jacobian`` to be the derivative of ``residual``, as
+        written (not checked: with a wrong one a false curve can be proven).
     events : sequence of Event
         The run's events, in its order (positions as in ``SpecialPoint.event``), with
         functions ``function(x, numbers)``; an event may be replaced by one with the same

@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from continuation.numbers import FLOATS, Jet, jets
 from groove_model.model.boundaries import BOUNDARY_NAMES, BoundarySystem
 from groove_model.model.parameters import Compliance, Parameters
+from groove_model.tracing import trace_boundaries
 
 pytest.importorskip("flint")
 
@@ -92,6 +93,27 @@ def test_jets_of_the_jacobian_match_central_differences():
             for col in range(4):
                 d = JJ[r][col].d if type(JJ[r][col]) is Jet else B.number(0.0)
                 assert abs(float(d.mid()) - fd[r, col]) <= float(d.rad()) + 1e-7
+
+
+@pytest.mark.parametrize(("k", "nu"), [(1e-4, 0.3), (1.0, 0.3), (10.0, 0.0), (1e6, 0.5)])
+def test_the_jacobians_are_the_derivatives_of_the_residuals_along_the_traced_boundaries(k, nu):
+    # the certificate takes each Jacobian to be the derivative of its residual (not proven):
+    # every row, at every traced point, against forward-mode jets of the residual
+    params = Parameters(k, Compliance.from_poisson(nu))
+    for name, curve in trace_boundaries(params).curves.items():
+        if name.endswith("limit"):
+            system = BoundarySystem("dr_limit", params, "sqrt_beta_L",
+                                    min(1.0, params.gamma_limit), conditioned=True)
+        else:
+            system = BoundarySystem(name, params, "sqrt_beta_L",
+                                    conditioned=name == "dr_no_roll")
+        for y in curve.engine[0].x:
+            J = np.array(system.jacobian(y))
+            for j in range(4):
+                row = system.residual([Jet(float(v), float(i == j)) for i, v in enumerate(y)],
+                                      jets(FLOATS))
+                column = [r.d if type(r) is Jet else 0.0 for r in row]
+                assert np.allclose(J[:, j], column, rtol=1e-12, atol=1e-12 * np.max(np.abs(J)))
 
 
 @pytest.mark.parametrize("k", [0.3, 1.0, 10.0])
