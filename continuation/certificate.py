@@ -149,6 +149,13 @@ class Certificate:
     node_distance : float
         Largest proven distance from a point of the curve to the curve of zeros.
     special_points : tuple of ProvenPoint
+    start_sides : tuple of int
+        Per event (in the order given): the proven sign of the event at the curve's first
+        point, ``+1`` or ``-1``, or for a zero proven there the sign of the side the curve
+        leaves it to; ``0`` where not proven (a failed certificate). With the events proven
+        to cross zero only where reported (in their direction), a start side of ``+1`` and no
+        reported zero of an event with direction ``-1`` keep it positive along the whole
+        curve: the curve stays on the side it starts on.
     excluded : tuple of Exclusion
     inserted_points : int
         Points of the arc inserted where a segment's tube was not proven (``refine``).
@@ -166,6 +173,7 @@ class Certificate:
     node_distance: float = 0.0
     special_points: tuple = ()
     excluded: tuple = ()
+    start_sides: tuple = ()
     inserted_points: int = 0
     seconds: float = 0.0
 

@@ -97,6 +97,7 @@ class _Run:
         self.node_distance = 0.0
         self.proven: list[ProvenPoint] = []
         self._run_signs: dict = {}  # the direction of the run through each zero at a point
+        self.start_sides: dict = {}  # event -> Certificate.start_sides
         self._node_jacobians: dict = {}
 
     # -- tubes and points -------------------------------------------------------------------
@@ -158,8 +159,7 @@ class _Run:
         distance = max(_upper(b - float(xi)) for b, xi in zip(node.box, self.x[i], strict=True))
         if not distance <= self.options.node_tolerance * scale:
             return _Failure(Check.POINT, f"{self.points.point(i)} is {distance:.3g} from the "
-                            "curve, more than "
-                            f"{self.options.node_tolerance * scale:.3g}", point=i)
+                            f"curve, more than {self.options.node_tolerance * scale:.3g}", point=i)
         self.node_distance = max(self.node_distance, distance)
         return node
 
@@ -320,13 +320,11 @@ class _Run:
         self._run_signs[i] = direction
         if reported and function.direction and direction != function.direction:
             return self._fail(function, f"its zero at {self.points.point(i)} is reported but "
-                              "crosses the "
-                              "other way", point=i)
+                              "crosses the other way", point=i)
         if not reported and 0 < i < m and (not function.direction
                                            or direction == function.direction):
             return self._fail(function, f"vanishes at {self.points.point(i)}, where no zero is "
-                              "reported",
-                              point=i)
+                              "reported", point=i)
         scale = 1.0 + float(np.max(np.abs(self.x[i])))
         box = prove_zero(function, self.problem, self.x[i], self.B,
                          self.options.special_tolerance * scale)
@@ -464,6 +462,8 @@ class _Run:
             if failure is not None:
                 return failure
             signs[i] = 0  # the zero proven at the point: counted there, not on its segments
+        if function.event is not None:  # the side the curve starts on (at a zero: leaves to)
+            self.start_sides[function.position] = self._run_signs[0] if 0 in at_zero else signs[0]
         for s in range(m):
             if s in excluded:
                 continue
@@ -472,8 +472,7 @@ class _Run:
                 leaves, signs[s], signs[s + 1], self._reach(s))
             if crossings is None:
                 return self._fail(function, f"its zeros on {self.points.segment(s)} are not "
-                                  "decided",
-                                  segment=s)
+                                  "decided", segment=s)
             if crossings == [SAME]:
                 same.append(s)
                 continue
@@ -575,6 +574,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     common: dict[str, Any] = dict(
         segments=len(run.segments), pieces=pieces, max_radius=radius,
         node_distance=run.node_distance, special_points=tuple(proven),
+        start_sides=tuple(run.start_sides.get(j, 0) for j in range(len(events))),
         inserted_points=points.inserted, seconds=time.perf_counter() - start)
     note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
         "point to rounding)" if merged else ""

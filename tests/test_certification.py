@@ -10,11 +10,12 @@ from continuation import Event, SpecialKind, certify
 from continuation import certification
 from continuation.certification import Check
 from continuation.numbers import FLOATS
-from groove_model.model.boundaries import BoundarySystem, dr_no_roll_branch_point
+from groove_model.model.boundaries import BoundarySystem, dr_no_roll_branch_point, limit_seed
 from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
-from groove_model.tracing.assembly import domain_events, validity_events
-from groove_model.tracing.certification import CERTIFY_OPTIONS, certified_events
+from groove_model.tracing.assembly import domain_events, trace_curve, validity_events
+from groove_model.tracing.certification import CERTIFY_OPTIONS, certified_events, outside_domain
+from groove_model.tracing.tracer import DEFAULT_OPTIONS
 
 pytest.importorskip("flint")
 
@@ -253,3 +254,19 @@ def test_groove_trace_certify_says_when_points_were_inserted(tmp_path, capsys):
     out = capsys.readouterr().out
     line = next(x for x in out.splitlines() if x.startswith("  dr_limit: proven: "))
     assert "more than traced: points of the arc inserted" in line
+
+
+@pytest.mark.parametrize(("direction", "outside"), [(1.0, []), (-1.0, ["delta = 0"])])
+def test_a_boundary_leaving_its_seed_out_of_the_domain_is_not_proven_inside(direction, outside):
+    # the limit curve from its seed on delta = 0, into the domain or out of it (delta < 0):
+    # both are curves of zeros, proven; only the first starts inside the domain
+    params = Parameters(1.0)
+    system = BoundarySystem("dr_limit", params, "sqrt_beta_L", min(1.0, params.gamma_limit),
+                            conditioned=True)
+    tagged = [*domain_events(system, 0.01 * params.gamma_limit), *validity_events(system)]
+    curve = trace_curve(system, system.from_x(limit_seed(params)),
+                        np.array([0.0, direction, 0.0, 0.0]),
+                        dataclasses.replace(DEFAULT_OPTIONS, max_steps=12), tagged)
+    cert = certify(curve, system, certified_events(tagged), options=CERTIFY_OPTIONS)
+    assert cert.proven, cert.message
+    assert outside_domain(cert, tagged) == outside

@@ -21,14 +21,18 @@ from continuation import Curve, Event
 from continuation.certification import Certificate, CertifyOptions, Check, Exclusion, certify
 
 from ..model.boundaries import corner_point
+from .assembly import Role
 from .curves import BoundaryCurve, Where
 
-__all__ = ["CERTIFY_OPTIONS", "certify_boundaries", "certified_events"]
+__all__ = ["CERTIFY_OPTIONS", "certified_events", "certify_boundaries", "outside_domain"]
 
 #: tolerances of the boundaries' certificates: every point within 1e-9 of the curve (the
 #: tracer's Newton tolerance is 1e-12), special points in boxes of radius <= 1e-5 (the end of
 #: a curve at the corner may be a few 1e-6 from the corner in w, where beta_L = w^2 ~ 1e-12)
 CERTIFY_OPTIONS = CertifyOptions(node_tolerance=1e-9, special_tolerance=1e-5)
+
+#: the roles of the events that bound the domain (each positive inside)
+_DOMAIN = (Role.DOMAIN_EDGE, Role.GAMMA_MIN, Role.CORNER)
 
 
 def certified_events(tagged) -> list[Event]:
@@ -60,6 +64,21 @@ def _not_covered(curve: BoundaryCurve, system, gamma_min: float) -> tuple:
                              "(pi/4, pi/4) (radius 0): it is a regular point of the chart "
                              "w = sqrt(beta_L), proven as the zero of the end event"))
     return tuple(out)
+
+
+def outside_domain(certificate: Certificate, tagged) -> list[str]:
+    """The domain's edges (the events of roles ``DOMAIN_EDGE``, ``GAMMA_MIN`` and ``CORNER``,
+    all positive inside) on whose outer side, or leaving to it, a certified curve starts
+    (:attr:`~continuation.Certificate.start_sides`); empty if it starts inside.
+
+    The certificate proves that these events cross zero, leaving the domain, only where
+    reported; with a start inside, the whole curve is then inside. (The validity conditions
+    are not held to this: a boundary started at a junction may start a rounding outside its
+    regime, where the crossing is reported at its next point.)
+    """
+    sides = certificate.start_sides
+    return [t.event.name for j, t in enumerate(tagged)
+            if t.role in _DOMAIN and not (j < len(sides) and sides[j] == 1)]
 
 
 def _rows_on_curve(curve: BoundaryCurve, certificate: Certificate, system, first: int,
@@ -111,6 +130,12 @@ def certify_boundaries(curves: dict, traced: dict, gamma_min: float,
         last = max(int(curves[n].engine_rows[-1]) for n in names)
         certificate = certify(_rows(engine, first, last), system, certified_events(tagged),
                               options=options)
+        outside = outside_domain(certificate, tagged) if certificate.proven else []
+        if outside:
+            certificate = dataclasses.replace(
+                certificate, proven=False, check=Check.EVENT,
+                message=f"not proven: {Check.EVENT}: the first point is not proven inside the "
+                        f"domain (on or beyond {', '.join(outside)})")
         for name in names:
             cert = dataclasses.replace(certificate, excluded=certificate.excluded
                                        + _not_covered(curves[name], system, gamma_min))

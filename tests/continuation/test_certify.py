@@ -508,6 +508,17 @@ def test_a_curve_started_a_rounding_before_an_event_zero(cubic_curve, offset, pr
         assert "u = -2 + offset" in cert.message and "no zero is reported" in cert.message
 
 
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_the_side_each_event_starts_on_is_proven(cubic_curve, sign):
+    # u rises from -2: STOP (u - 2) and MARK (u - 1/2) start negative; an event vanishing
+    # 1e-12 after the start is a zero at the start, and its side is the one the curve leaves
+    # it to: positive for u - (-2 + 1e-12), negative for its opposite
+    near = Event("near", lambda x, numbers=FLOATS: sign * (x[1] - (-2.0 + 1e-12)))
+    cert = certify(cubic_curve, cubic(), [STOP, MARK, near])
+    assert cert.proven and cert.start_sides == (-1, -1, int(sign)), cert.message
+    assert [p.index for p in cert.special_points if p.event == 2] == [0]
+
+
 def test_a_crossing_inside_the_first_segment_is_no_zero_at_the_start():
     # u = 2e-9 lambda is flat in u: the event u = 5e-10 may vanish within the points' accuracy
     # (1e-9) of the start, but it crosses at lambda = 0.25, inside the first segment of a curve
