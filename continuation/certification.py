@@ -27,9 +27,9 @@ those met along the curve from its first point to its last: a zero at the seam i
 lists) each zero twice.
 
 Anything else fails with the first segment or point where a test failed and why; a curve is
-never reported proven on evidence that is only numerical. Branch points (where the solution
-set is not one smooth arc) are not certified, and no neighbourhood of a singular end is cut
-out automatically: a curve ending at a singular point fails there, with the segment named.
+never reported proven on evidence that is only numerical, given that ``jacobian`` is the
+derivative of ``residual`` (checked in floats at the points). Branch points are not certified,
+and no neighbourhood of a singular end is cut out: a curve ending at a singular point fails.
 """
 
 from __future__ import annotations
@@ -519,8 +519,8 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     problem : Problem or object
         ``residual(x, numbers)`` (n values) and ``jacobian(x, numbers)`` (n rows of n + 1),
         written over a numbers namespace (:mod:`continuation.numbers`); called with floats,
-        balls and jets. The proof takes ``jacobian`` to be the derivative of ``residual``, as
-        written (not checked: with a wrong one a false curve can be proven).
+        balls and jets. The proof takes ``jacobian`` to be the derivative of ``residual``
+        (checked at the points only: :func:`~continuation.certify_input.jacobian_mismatch`).
     events : sequence of Event
         The run's events, in its order (positions as in ``SpecialPoint.event``), with
         functions ``function(x, numbers)``; an event may be replaced by one with the same

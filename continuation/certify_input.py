@@ -7,10 +7,14 @@ from typing import cast
 
 import numpy as np
 
-from .numbers import FLOATS
+from .numbers import FLOATS, Jet, jets
 from .result import Curve, SpecialKind
 
-__all__ = ["not_certifiable"]
+__all__ = ["JACOBIAN_TOL", "jacobian_mismatch", "not_certifiable"]
+
+#: problem.jacobian may differ from the residual's derivative (its jets, in floats) by this
+#: fraction of ``1 + max |row|`` at a point of the curve (rounding is some 1e-16 of it)
+JACOBIAN_TOL = 1e-8
 
 
 def _probe(name: str, function, x) -> None:
@@ -20,6 +24,32 @@ def _probe(name: str, function, x) -> None:
     except TypeError as exc:
         raise TypeError(f"{name} must take (x, numbers) and be written over the numbers "
                         f"namespace (continuation.numbers) to be certified: {exc}") from None
+
+
+def jacobian_mismatch(curve: Curve, problem) -> tuple | None:
+    """Where ``problem.jacobian`` is not the derivative of ``problem.residual``: the reason and
+    the point, or ``None``.
+
+    The proof takes ``jacobian`` to be the derivative of ``residual`` (Krawczyk's operator and
+    the curve's tangents are built on it), so a wrong one could prove a false curve. At every
+    point of the curve, each column is compared, in floats, with the residual's forward-mode
+    derivative (:func:`continuation.numbers.jets`), to :data:`JACOBIAN_TOL`. A check at the
+    points, not a proof: a Jacobian that is wrong only between them is not caught.
+    """
+    m = jets(FLOATS)
+    for i, x in enumerate(curve.x.tolist()):
+        J = np.array(problem.jacobian(x, FLOATS), dtype=float)
+        for j in range(len(x)):
+            row = problem.residual([Jet(v, float(c == j)) for c, v in enumerate(x)], m)
+            column = np.array([r.d if type(r) is Jet else 0.0 for r in row], dtype=float)
+            error = np.abs(J[:, j] - column)
+            allowed = JACOBIAN_TOL * (1.0 + np.max(np.abs(J), axis=1))
+            if not np.all(error <= allowed):
+                r = int(np.argmax(error - allowed))
+                return (f"problem.jacobian is not the derivative of problem.residual at point "
+                        f"{i}: entry ({r}, {j}) is {float(J[r, j])!r}, the residual's derivative "
+                        f"{float(column[r])!r}", i)
+    return None
 
 
 def not_certifiable(curve: Curve, problem, events, fold_coordinates) -> tuple | None:
@@ -60,4 +90,4 @@ def not_certifiable(curve: Curve, problem, events, fold_coordinates) -> tuple | 
         if p.kind is SpecialKind.BRANCH_POINT:
             return (f"branch point at point {p.index}: the solution set is not one smooth arc "
                     "there, which is not certified", p.index)
-    return None
+    return jacobian_mismatch(curve, problem)

@@ -694,3 +694,23 @@ def test_a_short_segment_with_opposite_tangents_fails_instead_of_raising():
                                 residuals=curve.residuals[:2], special_points=())
     cert = certify(short, circles(), fold_coordinates=())
     assert not cert.proven and cert.check is Check.TUBE and cert.segment == 0, cert.message
+
+
+def test_a_jacobian_that_is_not_the_residuals_derivative_is_refused():
+    # y (y - 0.01) = 0 is two lines; with the Jacobian (0, 1) points alternating between them
+    # were proven one smooth branch (Krawczyk's operator is built on the Jacobian given)
+    lines = Problem(lambda x, m=FLOATS: [x[1] * (x[1] - 0.01)],
+                    lambda x, m=FLOATS: [[0.0 * x[0], 1.0 + 0.0 * x[1]]])
+    traced = trace(Problem(lambda x, m=FLOATS: [x[1]], lambda x, m=FLOATS: [[0.0, 1.0]]),
+                   [0.0, 0.0], direction=[1.0, 0.0], options=Options(ds=0.1, ds_max=0.1,
+                                                                      max_steps=5))
+    x = np.array([[0.1 * i, 0.01 * (i % 2)] for i in range(len(traced))])
+    chord = np.diff(x, axis=0)
+    tangents = np.vstack([chord, chord[-1:]]) / np.linalg.norm(chord[0])
+    s = np.concatenate([[0.0], np.cumsum(np.linalg.norm(chord, axis=1))])
+    curve = dataclasses.replace(traced, x=x, tangents=tangents, s=s, special_points=())
+    cert = certify(curve, lines, fold_coordinates=())
+    assert not cert.proven and cert.check is Check.INPUT and cert.point == 0, cert.message
+    assert "not the derivative of problem.residual" in cert.message
+    right = Problem(lines.residual, lambda x, m=FLOATS: [[0.0 * x[0], 2.0 * x[1] - 0.01]])
+    assert certify(curve, right, fold_coordinates=()).check is not Check.INPUT
