@@ -76,9 +76,8 @@ def outside_domain(certificate: Certificate, tagged) -> list[str]:
     are not held to this: a boundary started at a junction may start a rounding outside its
     regime, where the crossing is reported at its next point.)
     """
-    sides = certificate.start_sides
-    return [t.event.name for j, t in enumerate(tagged)
-            if t.role in _DOMAIN and not (j < len(sides) and sides[j] == 1)]
+    return [t.event.name for t, side in zip(tagged, certificate.start_sides, strict=True)
+            if t.role in _DOMAIN and side != 1]
 
 
 def _rows_on_curve(curve: BoundaryCurve, certificate: Certificate, system, first: int,
