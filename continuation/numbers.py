@@ -9,6 +9,8 @@ may use
   centred at 0, so a proof there fails);
 * comparisons (``a >= b``), which mean *certainly* (for a ball: for every value it holds);
   for a branch between two formulas that are both exact where both apply;
+* :func:`quotient` for a division whose denominator may vanish (elementwise over arrays,
+  where an ``if`` on a comparison cannot branch);
 * ``m.sin``, ``m.cos``, ``m.sqrt`` (NaN, or a non-finite ball, below zero), ``m.sinc``
   (``sin u / u``, 1 at 0) and the constant ``m.pi``;
 * ``m.rigorous`` (whether results enclose the exact values), ``m.gauss_legendre(n, panels)``
@@ -19,11 +21,13 @@ may use
   ``bound(args, widen)``, the bound over the complex polydisc of radius ``widen`` around the
   arguments).
 
-Three implementations: :data:`FLOATS` (``math``; the hot path), :func:`balls` (python-flint's
-Arb midpoint-radius balls, every operation rounded outwards: the ``[certify]`` extra) and
-:func:`jets` (value, first and optionally second derivative along one direction, over any of
-the two, by forward-mode differentiation; Griewank & Walther, *Evaluating Derivatives*, SIAM
-2008, ch. 13).
+Four implementations: :data:`FLOATS` (``math``; the hot path), :data:`ARRAYS` (numpy float
+arrays, elementwise: one formula evaluated at many points at once, the same IEEE operations
+as :data:`FLOATS` point by point; a formula's branch must then be written as an elementwise
+choice, see :func:`quotient`), :func:`balls` (python-flint's Arb midpoint-radius balls, every
+operation rounded outwards: the ``[certify]`` extra) and :func:`jets` (value, first and
+optionally second derivative along one direction, over floats or balls, by forward-mode
+differentiation; Griewank & Walther, *Evaluating Derivatives*, SIAM 2008, ch. 13).
 """
 
 from __future__ import annotations
@@ -34,7 +38,7 @@ import math
 
 import numpy as np
 
-__all__ = ["FLOATS", "Jet", "balls", "jets", "require_flint"]
+__all__ = ["ARRAYS", "FLOATS", "Jet", "balls", "jets", "quotient", "require_flint"]
 
 
 def _float_sqrt(a: float) -> float:
@@ -99,6 +103,61 @@ class _Floats:
 
 #: the float namespace (``math``), used on the tracer's hot path
 FLOATS = _Floats()
+
+
+def _array_sqrt(a: np.ndarray) -> np.ndarray:
+    with np.errstate(invalid="ignore"):
+        return np.sqrt(a)  # NaN below zero, as _float_sqrt
+
+
+def _array_sinc(u: np.ndarray) -> np.ndarray:
+    u = np.asarray(u, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(np.abs(u) > 1e-4, np.sin(u) / u, 1.0 - u * u / 6.0)
+
+
+class _Arrays:
+    """numpy float arrays, elementwise: many points of one formula at once, not rigorous.
+
+    Every operation is the IEEE operation :data:`FLOATS` does on each element (``np.sin``
+    and ``np.cos`` are checked against ``math`` in the tests), so a formula gives the same
+    numbers at each point; comparisons are elementwise, so a branch must use
+    :func:`quotient` (or another elementwise choice), not ``if``.
+    """
+
+    name = "arrays"
+    rigorous = False
+    sin = staticmethod(np.sin)
+    cos = staticmethod(np.cos)
+    sqrt = staticmethod(_array_sqrt)
+    sinc = staticmethod(_array_sinc)
+    pi = math.pi
+
+    @staticmethod
+    def number(x) -> np.ndarray:
+        return np.asarray(x, dtype=float)
+
+    @staticmethod
+    def value(x):
+        return x
+
+    @staticmethod
+    def is_finite(x) -> bool:
+        return bool(np.all(np.isfinite(x)))
+
+
+#: the array namespace (numpy, elementwise), for checks over a whole curve at once
+ARRAYS = _Arrays()
+
+
+def quotient(numerator, denominator, at_zero):
+    """``numerator / denominator``, or ``at_zero`` where ``denominator`` is zero, in any of
+    the namespaces: elementwise for arrays; for a ball, ``at_zero`` unless it is certainly
+    nonzero; a jet is never zero (its derivatives are what it carries)."""
+    if type(denominator) is np.ndarray:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(denominator != 0.0, numerator / denominator, at_zero)
+    return numerator / denominator if denominator != 0.0 else at_zero
 
 
 def require_flint():

@@ -49,6 +49,32 @@ def test_jacobian_matches_central_differences(name, chart, x, k, c):
     assert np.array_equal(H, system.residual(x)) and np.array_equal(J, J2)
 
 
+@pytest.mark.parametrize("form", [("beta_L", 1.0, False), ("sqrt_beta_L", 1.0, False),
+                                  ("sqrt_beta_L", 0.05, False), ("sqrt_beta_L", 0.05, True)])
+@pytest.mark.parametrize("name", BOUNDARY_NAMES)
+@settings(max_examples=15, deadline=None)
+@given(points=st.lists(interior_points(), min_size=1, max_size=6), k=st.floats(1e-4, 1e6),
+       c=st.sampled_from([1.0, 2.0 / 3.0]))
+def test_whole_curve_evaluations_are_the_point_evaluations(name, form, points, k, c):
+    """residuals, residuals_and_jacobians and physical (numpy arrays, every point at once)
+    give the numbers of residual, residual_and_jacobian and is_physical point by point, to
+    the last bit."""
+    chart, scale, conditioned = form
+    if conditioned and name == "rs_no_roll":
+        conditioned = False
+    system = BoundarySystem(name, Parameters(k, Compliance(c)), chart, scale, conditioned)
+    ys = system.from_x(np.array(points))
+    ys = np.vstack([ys, [np.nan] * 4])  # a non-finite point stays non-finite, not an error
+    H, J = system.residuals_and_jacobians(ys)
+    assert np.array_equal(system.residuals(ys), H, equal_nan=True)
+    for y, h, j in zip(ys, H, J, strict=True):
+        h1, j1 = system.residual_and_jacobian(y)
+        assert np.array_equal(h, h1, equal_nan=True) and np.array_equal(j, j1, equal_nan=True)
+    for tol in (0.0, 1e-3):
+        assert system.physical(ys, tol).tolist() == [system.is_physical(y, tol) for y in ys]
+    assert system.residuals(np.zeros((0, 4))).shape == (0, 3)
+
+
 @pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
 @pytest.mark.parametrize("name", BOUNDARY_NAMES)
 @settings(max_examples=40, deadline=None)

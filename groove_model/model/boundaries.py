@@ -48,7 +48,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from continuation.numbers import FLOATS
+from continuation.numbers import ARRAYS, FLOATS, quotient
 
 from .deflation import deflated_torque
 from .parameters import Parameters
@@ -93,7 +93,7 @@ def _left_contact(var, chart: str, m):
     """
     if chart == "beta_L":
         q_L = m.sqrt(m.sin(var))
-        dq_L = m.cos(var) / (2.0 * q_L) if q_L != 0.0 else math.inf
+        dq_L = quotient(m.cos(var), 2.0 * q_L, math.inf)
         return var, q_L, 1.0, dq_L
     w2 = var * var
     r = m.sqrt(m.sinc(w2))
@@ -144,7 +144,7 @@ def _rows(x, k, c, system, chart, m, jacobian=True, unit=0.0):
     cos_g, cos_d = m.cos(gamma), m.cos(delta)
     D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
     # beta_R = pi - 2 gamma - beta_L: d/d gamma = -2, d/d(chart variable) = -b1.
-    qR_beta = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf  # d q_R / d beta_L
+    qR_beta = quotient(-c_R, 2.0 * q_R, -math.inf)             # d q_R / d beta_L
     nR_beta = -1.5 * q_R * c_R                                  # d n_R / d beta_L
     # Derivatives with respect to the chart variable.
     dA, dB, ds_L = -s_L * b1, s_R * b1, c_L * b1
@@ -206,7 +206,7 @@ def _limit_rows(x, k, c, chart, m, jacobian, unit):
     cos_tL, cos_tR = m.cos(theta_L), m.cos(theta_R)
     cos_g, cos_d = m.cos(gamma), m.cos(delta)
     D_g, D_d = 2.0 * cos_g * sin_d, 2.0 * sin_g * cos_d
-    qR_beta = -c_R / (2.0 * q_R) if q_R != 0.0 else -math.inf  # d q_R / d beta_L
+    qR_beta = quotient(-c_R, 2.0 * q_R, -math.inf)             # d q_R / d beta_L
     nR_beta = -1.5 * q_R * c_R                                  # d n_R / d beta_L
     ds_L = c_L * b1
     dn_L = ds_L * q_L + s_L * dq_L
@@ -390,6 +390,49 @@ class BoundarySystem:
         values, rows = self._evaluate(x, FLOATS, True)
         return np.array(values), self._float_jacobian(rows)
 
+    @property
+    def _branches(self) -> bool:
+        """Whether the formulas branch per point (not for :data:`ARRAYS`): the deflated torque."""
+        return self.conditioned and self.name == "dr_no_roll"
+
+    def _columns(self, ys) -> list:
+        """The columns of the points ``ys`` (``(n, 4)`` chart coordinates), ``gamma`` and
+        ``delta`` in radians: the coordinates of :meth:`_unscaled` for every point at once."""
+        ys = np.asarray(ys, dtype=float).reshape(-1, 4)
+        columns = [ys[:, i] for i in range(4)]
+        if self.scale != 1.0:
+            columns[0] = columns[0] * self.scale
+            columns[1] = columns[1] * self.scale
+        return columns
+
+    def residuals(self, ys) -> np.ndarray:
+        """``H`` at every row of ``ys`` (``(n, 4)`` chart coordinates) at once, ``(n, 3)``:
+        the formulas of :meth:`residual` over numpy arrays (:data:`continuation.numbers.ARRAYS`),
+        the same numbers row by row. The deflated torque of the conditioned ``dr_no_roll``
+        branches on each point's ``beta_L - beta_R``: that form is evaluated point by point."""
+        if self._branches:
+            return np.array([self.residual(y) for y in np.asarray(ys).reshape(-1, 4)]
+                            ).reshape(-1, 3)
+        values, _ = _rows(self._columns(ys), self.params.k, self.params.c, self.name,
+                          self.chart, ARRAYS, jacobian=False, unit=self._unit)
+        return np.stack(np.broadcast_arrays(*values), axis=1)
+
+    def residuals_and_jacobians(self, ys) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`residual_and_jacobian` at every row of ``ys`` at once: ``(n, 3)`` and
+        ``(n, 3, 4)`` (see :meth:`residuals`)."""
+        if self._branches:
+            pairs = [self.residual_and_jacobian(y) for y in np.asarray(ys).reshape(-1, 4)]
+            return (np.array([h for h, _ in pairs]).reshape(-1, 3),
+                    np.array([j for _, j in pairs]).reshape(-1, 3, 4))
+        columns = self._columns(ys)
+        values, rows = _rows(columns, self.params.k, self.params.c, self.name, self.chart,
+                             ARRAYS, jacobian=True, unit=self._unit)
+        jacobians = np.empty((len(columns[0]), 3, 4))
+        for i, row in enumerate(rows):
+            for j, entry in enumerate(row):
+                jacobians[:, i, j] = entry * self.scale if j < 2 and self.scale != 1.0 else entry
+        return np.stack(np.broadcast_arrays(*values), axis=1), jacobians
+
     def _float_jacobian(self, rows) -> np.ndarray:
         """The rows of :func:`_rows` (columns of ``gamma`` and ``delta`` in radians) as the
         Jacobian in the chart, ``(3, 4)`` floats (scaled on Python floats: a numpy slice
@@ -468,6 +511,16 @@ class BoundarySystem:
     def is_physical(self, x, tol: float = 0.0) -> bool:
         """Whether every validity function is ``>= -tol`` at ``x``."""
         return all(f(x) >= -tol for f in self.validity.values())
+
+    def physical(self, ys, tol: float = 0.0) -> np.ndarray:
+        """:meth:`is_physical` at every row of ``ys`` (``(n, 4)`` chart coordinates) at once,
+        a boolean array (the validity functions over numpy arrays, the same numbers)."""
+        ys = np.asarray(ys, dtype=float).reshape(-1, 4)
+        columns = [ys[:, i] for i in range(4)]
+        physical = np.ones(len(ys), dtype=bool)
+        for f in self.validity.values():
+            physical &= f(columns, numbers=ARRAYS) >= -tol
+        return physical
 
 
 def boundary_system(name: str, k_or_params, chart: str = "beta_L",

@@ -251,12 +251,11 @@ def into_domain(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _largest_scaled_residual(system: BoundarySystem, x: np.ndarray) -> float:
-    """``max`` over the rows of :meth:`BoundarySystem.scaled_residual`, the equations'
-    scales computed once for the whole curve (the same numbers, row by row)."""
+    """``max`` over the rows of :meth:`BoundarySystem.scaled_residual`, every row at once
+    (the same numbers, row by row)."""
     if not len(x):
         return 0.0
-    residuals = np.array([system.residual(xi) for xi in x])
-    return float(np.max(np.abs(residuals) / system.row_scales))
+    return float(np.max(np.abs(system.residuals(x)) / system.row_scales))
 
 
 def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagged],
@@ -267,8 +266,7 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     ``junctions``: ``(row, note, x)`` marks a junction at a row and puts it at ``x``.
     """
     x, outside = into_domain(system.to_x(curve.x))
-    physical = np.array([system.is_physical(y, tol=PHYSICAL_TOLERANCE) for y in curve.x],
-                        dtype=bool)
+    physical = system.physical(curve.x, tol=PHYSICAL_TOLERANCE)
     marks = _Marks()
     marks.add(0, PointKind.START, start_note)
     if start is Where.BRANCH_POINT:

@@ -47,7 +47,6 @@ import math
 from typing import cast
 
 import numpy as np
-from scipy.linalg.lapack import dgesv
 
 from continuation import Curve, Event, Options, SpecialKind
 from continuation.numbers import FLOATS, require_flint
@@ -96,28 +95,35 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     """Largest distance from a point of ``rs_limit`` to the curve ``dr_limit``.
 
     Each point is projected onto ``dr_limit`` by Gauss-Newton with the minimum-norm step
-    ``dx = -J^T (J J^T)^{-1} H`` in the smooth chart. The first step is the distance to first
-    order, with an error of order ``|dx|^2`` (times the curvature of ``H = 0``): once it is
-    below ``1e-8`` that error is below rounding and the iteration stops.
+    ``dx = -J^T (J J^T)^{-1} H`` in the smooth chart, every point at once. The first step is
+    the distance to first order, with an error of order ``|dx|^2`` (times the curvature of
+    ``H = 0``): once it is below ``1e-8`` that error is below rounding and the point's
+    iteration stops. NaN (no distance claimed) if a ``J J^T`` is singular or a point does
+    not converge in 20 steps.
     """
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
-    worst = 0.0
-    # norms on Python floats (the same numbers as np.linalg.norm, a fraction of its overhead)
-    for x, y in zip(rs.x, system.from_x(rs.x), strict=True):
-        for _ in range(20):
-            H, J = system.residual_and_jacobian(y)
-            _, _, multipliers, info = dgesv(J @ J.T, H)
-            if info != 0 or not math.isfinite(sum(multipliers.tolist())):
-                return math.nan  # rank-deficient: no distance is claimed
-            step = J.T @ multipliers
-            y = y - step
-            if math.sqrt(float(step @ step)) <= 1e-8 * (1.0 + max(map(abs, y.tolist()))):
-                break
-        else:
-            return math.nan  # not converged: no distance is claimed
-        error = system.to_x(y) - x
-        worst = max(worst, math.sqrt(float(error @ error)))
-    return worst
+    y = system.from_x(rs.x).reshape(-1, 4)
+    active = np.arange(len(y))
+    for _ in range(20):
+        if not active.size:
+            break
+        H, J = system.residuals_and_jacobians(y[active])
+        Jt = J.transpose(0, 2, 1)
+        try:
+            multipliers = np.linalg.solve(J @ Jt, H[:, :, None])
+        except np.linalg.LinAlgError:
+            return math.nan  # rank-deficient: no distance is claimed
+        if not np.all(np.isfinite(multipliers)):
+            return math.nan
+        step = (Jt @ multipliers)[:, :, 0]
+        y[active] -= step
+        done = np.sqrt(np.sum(step * step, axis=1)) <= 1e-8 * (
+            1.0 + np.max(np.abs(y[active]), axis=1))
+        active = active[~done]
+    if active.size:
+        return math.nan  # not converged: no distance is claimed
+    error = system.to_x(y) - rs.x
+    return float(np.max(np.sqrt(np.sum(error * error, axis=1)), initial=0.0))
 
 
 def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[str]:

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from continuation import Event, Options, Problem, certify, trace
-from continuation.numbers import FLOATS, Jet, balls, jets, require_flint
+from continuation.numbers import ARRAYS, FLOATS, Jet, balls, jets, quotient, require_flint
 
 
 def test_floats_are_math_with_nan_outside_the_domain():
@@ -17,6 +17,25 @@ def test_floats_are_math_with_nan_outside_the_domain():
     assert math.isnan(FLOATS.sqrt(-1e-300)) and FLOATS.sqrt(4.0) == 2.0
     assert FLOATS.sinc(0.0) == 1.0 and FLOATS.sinc(1.0) == math.sin(1.0)
     assert FLOATS.analytic_error(None, ()) == 0.0 and not FLOATS.rigorous
+
+
+def test_arrays_give_the_floats_numbers_elementwise():
+    u = np.concatenate([np.random.default_rng(3).uniform(-7.0, 7.0, 2000),
+                        [0.0, 1e-5, -1e-5, 1e-4, 2e-4, -3.0, 1e-300]])
+    for array_f, float_f in ((ARRAYS.sin, FLOATS.sin), (ARRAYS.cos, FLOATS.cos),
+                             (ARRAYS.sqrt, FLOATS.sqrt), (ARRAYS.sinc, FLOATS.sinc)):
+        expected = np.array([float_f(float(v)) for v in u])
+        assert np.array_equal(array_f(u), expected, equal_nan=True)
+    assert ARRAYS.pi == math.pi and not ARRAYS.rigorous
+    assert ARRAYS.is_finite(np.array([1.0, 2.0])) and not ARRAYS.is_finite(np.array([1.0, np.nan]))
+
+
+def test_quotient_is_elementwise_over_arrays_and_a_plain_branch_otherwise():
+    den = np.array([2.0, 0.0, -4.0, 0.0])
+    assert np.array_equal(quotient(np.array([1.0, 1.0, 1.0, -1.0]), den, -math.inf),
+                          [0.5, -math.inf, -0.25, -math.inf])
+    assert quotient(1.0, 4.0, math.inf) == 0.25 and quotient(1.0, 0.0, math.inf) == math.inf
+    assert quotient(Jet(1.0, 1.0), Jet(2.0, 0.0), math.inf).v == 0.5
 
 
 def test_float_jets_differentiate():
