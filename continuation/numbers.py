@@ -22,12 +22,13 @@ may use
   arguments).
 
 Four implementations: :data:`FLOATS` (``math``; the hot path), :data:`ARRAYS` (numpy float
-arrays, elementwise: one formula evaluated at many points at once, the same IEEE operations
-as :data:`FLOATS` point by point; a formula's branch must then be written as an elementwise
-choice, see :func:`quotient`), :func:`balls` (python-flint's Arb midpoint-radius balls, every
-operation rounded outwards: the ``[certify]`` extra) and :func:`jets` (value, first and
-optionally second derivative along one direction, over floats or balls, by forward-mode
-differentiation; Griewank & Walther, *Evaluating Derivatives*, SIAM 2008, ch. 13).
+arrays, elementwise: one formula at many points at once, with the operations of
+:data:`FLOATS` on each element; only the elementary functions, no quadrature or error
+bounds, and no ``if`` on a comparison, see :func:`quotient`), :func:`balls` (python-flint's
+Arb midpoint-radius balls, every operation rounded outwards: the ``[certify]`` extra) and
+:func:`jets` (value, first and optionally second derivative along one direction, over floats
+or balls, by forward-mode differentiation; Griewank & Walther, *Evaluating Derivatives*,
+SIAM 2008, ch. 13).
 """
 
 from __future__ import annotations
@@ -119,10 +120,13 @@ def _array_sinc(u: np.ndarray) -> np.ndarray:
 class _Arrays:
     """numpy float arrays, elementwise: many points of one formula at once, not rigorous.
 
-    Every operation is the IEEE operation :data:`FLOATS` does on each element (``np.sin``
-    and ``np.cos`` are checked against ``math`` in the tests), so a formula gives the same
-    numbers at each point; comparisons are elementwise, so a branch must use
-    :func:`quotient` (or another elementwise choice), not ``if``.
+    Arithmetic is the IEEE arithmetic of Python floats, and ``np.sin`` and ``np.cos`` agree
+    with ``math``'s on the platforms tested (the tests check it: some numpy builds differ by
+    an ulp), so a formula gives the numbers of :data:`FLOATS` at each point. Comparisons are
+    elementwise, so a branch must use :func:`quotient` (or another elementwise choice), not
+    ``if``; a formula with such a branch (a quadrature switch, say) is evaluated point by
+    point instead. Only ``sin``, ``cos``, ``sqrt``, ``sinc`` and ``pi``: no quadrature
+    (``gauss_legendre``) or error bounds.
     """
 
     name = "arrays"

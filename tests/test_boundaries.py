@@ -77,6 +77,26 @@ def test_whole_curve_evaluations_are_the_point_evaluations(name, form, points, k
 
 @pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
 @pytest.mark.parametrize("name", BOUNDARY_NAMES)
+def test_whole_curve_evaluations_at_the_contact_ends_are_quiet(name, chart):
+    """At the ends of the contact (beta_L = 0, beta_R = 0) the point evaluations give inf or
+    NaN entries silently; so do the array ones (the tests turn warnings into errors), with
+    the same numbers. A row that is not finite gives NaN where ``math`` would raise."""
+    system = BoundarySystem(name, Parameters(1.0), chart)
+    x = np.array([[0.7, 0.2, 0.0, 0.3], [0.5 * math.pi, 0.0, 0.0, 0.0],
+                  [0.4, 0.1, math.pi - 0.8, 0.1], [0.0, 0.0, 0.0, 0.0]])
+    ys = system.from_x(x)
+    H, J = system.residuals_and_jacobians(ys)
+    for y, h, j in zip(ys, H, J, strict=True):
+        h1, j1 = system.residual_and_jacobian(y)
+        assert np.array_equal(h, h1, equal_nan=True) and np.array_equal(j, j1, equal_nan=True)
+    H, J = system.residuals_and_jacobians(np.array([[math.inf, 0.1, 0.5, 0.0]]))
+    assert np.isnan(H).any() and np.isnan(system.residuals([[math.inf, 0.1, 0.5, 0.0]])).any()
+    if system.validity:  # (rs_limit has no validity condition: every row is physical)
+        assert not system.physical(np.array([[0.3, 0.1, math.inf, 0.0]]))[0]
+
+
+@pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
+@pytest.mark.parametrize("name", BOUNDARY_NAMES)
 @settings(max_examples=40, deadline=None)
 @given(x=interior_points(), k=st.floats(1e-4, 1e6), c=st.sampled_from([1.0, 0.6]),
        scale=st.sampled_from([1.0, 0.05]))

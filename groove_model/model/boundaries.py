@@ -69,6 +69,12 @@ REGIME_OF = {"dr_limit": "double_rolling", "rs_limit": "rolling_sliding",
              "dr_no_roll": "double_rolling", "rs_no_roll": "rolling_sliding"}
 _PI = math.pi
 
+def _quiet() -> np.errstate:
+    """Over arrays, as over floats, an infinite or undefined intermediate gives NaN or inf
+    silently (``inf * 0`` at the contact's ends); where ``math`` would raise (``sin(inf)``),
+    NaN."""
+    return np.errstate(invalid="ignore", over="ignore", divide="ignore")
+
 
 class Condition(str, enum.Enum):
     """A condition of a regime's validity; the values are the names used in notes and files."""
@@ -413,8 +419,9 @@ class BoundarySystem:
         if self._branches:
             return np.array([self.residual(y) for y in np.asarray(ys).reshape(-1, 4)]
                             ).reshape(-1, 3)
-        values, _ = _rows(self._columns(ys), self.params.k, self.params.c, self.name,
-                          self.chart, ARRAYS, jacobian=False, unit=self._unit)
+        with _quiet():
+            values, _ = _rows(self._columns(ys), self.params.k, self.params.c, self.name,
+                              self.chart, ARRAYS, jacobian=False, unit=self._unit)
         return np.stack(np.broadcast_arrays(*values), axis=1)
 
     def residuals_and_jacobians(self, ys) -> tuple[np.ndarray, np.ndarray]:
@@ -425,8 +432,9 @@ class BoundarySystem:
             return (np.array([h for h, _ in pairs]).reshape(-1, 3),
                     np.array([j for _, j in pairs]).reshape(-1, 3, 4))
         columns = self._columns(ys)
-        values, rows = _rows(columns, self.params.k, self.params.c, self.name, self.chart,
-                             ARRAYS, jacobian=True, unit=self._unit)
+        with _quiet():
+            values, rows = _rows(columns, self.params.k, self.params.c, self.name, self.chart,
+                                 ARRAYS, jacobian=True, unit=self._unit)
         jacobians = np.empty((len(columns[0]), 3, 4))
         for i, row in enumerate(rows):
             for j, entry in enumerate(row):
@@ -518,8 +526,9 @@ class BoundarySystem:
         ys = np.asarray(ys, dtype=float).reshape(-1, 4)
         columns = [ys[:, i] for i in range(4)]
         physical = np.ones(len(ys), dtype=bool)
-        for f in self.validity.values():
-            physical &= f(columns, numbers=ARRAYS) >= -tol
+        with _quiet():
+            for f in self.validity.values():
+                physical &= f(columns, numbers=ARRAYS) >= -tol
         return physical
 
 

@@ -104,26 +104,32 @@ def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) ->
     system = BoundarySystem("dr_limit", params, "sqrt_beta_L")
     y = system.from_x(rs.x).reshape(-1, 4)
     active = np.arange(len(y))
-    for _ in range(20):
-        if not active.size:
-            break
-        H, J = system.residuals_and_jacobians(y[active])
-        Jt = J.transpose(0, 2, 1)
-        try:
-            multipliers = np.linalg.solve(J @ Jt, H[:, :, None])
-        except np.linalg.LinAlgError:
-            return math.nan  # rank-deficient: no distance is claimed
-        if not np.all(np.isfinite(multipliers)):
-            return math.nan
-        step = (Jt @ multipliers)[:, :, 0]
-        y[active] -= step
-        done = np.sqrt(np.sum(step * step, axis=1)) <= 1e-8 * (
-            1.0 + np.max(np.abs(y[active]), axis=1))
-        active = active[~done]
-    if active.size:
-        return math.nan  # not converged: no distance is claimed
-    error = system.to_x(y) - rs.x
-    return float(np.max(np.sqrt(np.sum(error * error, axis=1)), initial=0.0))
+    # a point that is not finite makes the distance NaN (checked below), without warnings
+    with np.errstate(invalid="ignore", over="ignore", divide="ignore"):
+        for _ in range(20):
+            if not active.size:
+                break
+            H, J = system.residuals_and_jacobians(y[active])
+            Jt = J.transpose(0, 2, 1)
+            try:
+                multipliers = np.linalg.solve(J @ Jt, H[:, :, None])
+            except np.linalg.LinAlgError:
+                return math.nan  # rank-deficient: no distance is claimed
+            if not np.all(np.isfinite(multipliers)):
+                return math.nan
+            step = (Jt @ multipliers)[:, :, 0]
+            y[active] -= step
+            done = _norms(step) <= 1e-8 * (1.0 + np.max(np.abs(y[active]), axis=1))
+            active = active[~done]
+        if active.size:
+            return math.nan  # not converged: no distance is claimed
+        return float(np.max(_norms(system.to_x(y) - rs.x), initial=0.0))
+
+
+def _norms(v: np.ndarray) -> np.ndarray:
+    """The 2-norms of the rows of ``v``: ``sqrt(v_i . v_i)`` as row-by-row dot products (the
+    rounding of ``v @ v`` for each row, which a sum of squares does not always repeat)."""
+    return np.sqrt((v[:, None, :] @ v[:, :, None])[:, 0, 0])
 
 
 def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[str]:
