@@ -69,6 +69,7 @@ REGIME_OF = {"dr_limit": "double_rolling", "rs_limit": "rolling_sliding",
              "dr_no_roll": "double_rolling", "rs_no_roll": "rolling_sliding"}
 _PI = math.pi
 
+
 def _quiet() -> np.errstate:
     """Over arrays, as over floats, an infinite or undefined intermediate gives NaN or inf
     silently (``inf * 0`` at the contact's ends); where ``math`` would raise (``sin(inf)``),
