@@ -126,7 +126,8 @@ class _Arrays:
     elementwise, so a branch must use :func:`quotient` (or another elementwise choice), not
     ``if``; a formula with such a branch (a quadrature switch, say) is evaluated point by
     point instead. Only ``sin``, ``cos``, ``sqrt``, ``sinc`` and ``pi``: no quadrature
-    (``gauss_legendre``) or error bounds.
+    (``gauss_legendre``), error bounds or conversions (``number``, ``value``): the caller
+    passes the formula its arguments as arrays (one per coordinate, all points at once).
     """
 
     name = "arrays"
@@ -136,18 +137,6 @@ class _Arrays:
     sqrt = staticmethod(_array_sqrt)
     sinc = staticmethod(_array_sinc)
     pi = math.pi
-
-    @staticmethod
-    def number(x) -> np.ndarray:
-        return np.asarray(x, dtype=float)
-
-    @staticmethod
-    def value(x):
-        return x
-
-    @staticmethod
-    def is_finite(x) -> bool:
-        return bool(np.all(np.isfinite(x)))
 
 
 #: the array namespace (numpy, elementwise), for checks over a whole curve at once

@@ -70,6 +70,12 @@ REGIME_OF = {"dr_limit": "double_rolling", "rs_limit": "rolling_sliding",
 _PI = math.pi
 
 
+def _split(ys) -> list:
+    """The four columns of the points ``ys`` (``(n, 4)``, or one point ``(4,)``)."""
+    ys = np.asarray(ys, dtype=float).reshape(-1, 4)
+    return [ys[:, i] for i in range(4)]
+
+
 def _quiet() -> np.errstate:
     """Over arrays, as over floats, an infinite or undefined intermediate gives NaN or inf
     silently (``inf * 0`` at the contact's ends); where ``math`` would raise (``sin(inf)``),
@@ -405,8 +411,7 @@ class BoundarySystem:
     def _columns(self, ys) -> list:
         """The columns of the points ``ys`` (``(n, 4)`` chart coordinates), ``gamma`` and
         ``delta`` in radians: the coordinates of :meth:`_unscaled` for every point at once."""
-        ys = np.asarray(ys, dtype=float).reshape(-1, 4)
-        columns = [ys[:, i] for i in range(4)]
+        columns = _split(ys)
         if self.scale != 1.0:
             columns[0] = columns[0] * self.scale
             columns[1] = columns[1] * self.scale
@@ -524,9 +529,8 @@ class BoundarySystem:
     def physical(self, ys, tol: float = 0.0) -> np.ndarray:
         """:meth:`is_physical` at every row of ``ys`` (``(n, 4)`` chart coordinates) at once,
         a boolean array (the validity functions over numpy arrays, the same numbers)."""
-        ys = np.asarray(ys, dtype=float).reshape(-1, 4)
-        columns = [ys[:, i] for i in range(4)]
-        physical = np.ones(len(ys), dtype=bool)
+        columns = _split(ys)
+        physical = np.ones(len(columns[0]), dtype=bool)
         with _quiet():
             for f in self.validity.values():
                 physical &= f(columns, numbers=ARRAYS) >= -tol
