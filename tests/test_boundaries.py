@@ -7,6 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from continuation.numbers import FLOATS
 from groove_model.model.boundaries import (
     BOUNDARY_NAMES,
     BoundarySystem,
@@ -94,6 +95,45 @@ def test_whole_curve_evaluations_at_the_contact_ends_are_quiet(name, chart):
     if system.validity:  # (rs_limit has no validity condition: every row is physical)
         assert not system.physical(np.array([[0.3, 0.1, math.inf, 0.0]]))[0]
 
+
+@pytest.mark.parametrize("form", [("beta_L", 1.0, False), ("sqrt_beta_L", 1.0, False),
+                                  ("sqrt_beta_L", 0.05, False), ("sqrt_beta_L", 0.05, True)])
+@pytest.mark.parametrize("name", BOUNDARY_NAMES)
+@settings(max_examples=15, deadline=None)
+@given(x=interior_points(), other=interior_points(), k=st.floats(1e-4, 1e6))
+def test_jacobian_after_a_residual_is_the_jacobian_evaluated_afresh(name, form, x, other, k):
+    """The Jacobian at the point of the last residual reuses that evaluation's rows: the same
+    numbers as a system that never evaluated anything, at that point and at any other, and a
+    point with the same coordinates in another array (a copy) is the same point."""
+    chart, scale, conditioned = form
+    if conditioned and name == "rs_no_roll":
+        return
+    params = Parameters(k)
+    system = BoundarySystem(name, params, chart, scale, conditioned)
+
+    def fresh(y):
+        return BoundarySystem(name, params, chart, scale, conditioned).jacobian(y)
+
+    y, z = system.from_x(x), system.from_x(other)
+    H = system.residual(y)
+    assert np.array_equal(system.jacobian(y.copy()), fresh(y), equal_nan=True)
+    assert np.array_equal(system.jacobian(z), fresh(z), equal_nan=True)
+    assert np.array_equal(system.jacobian(y), fresh(y), equal_nan=True)
+    assert np.array_equal(H, BoundarySystem(name, params, chart, scale, conditioned).residual(y),
+                          equal_nan=True)
+
+
+def test_residual_where_only_the_jacobian_divides_by_zero():
+    """At ``beta_R = 0`` the deflated torque's derivative divides by ``q_R = 0`` while the
+    torque itself is finite: the residual is still evaluated (its rows are not kept), and the
+    Jacobian fails there as it did before any residual."""
+    system = BoundarySystem("dr_no_roll", Parameters(2.0), "beta_L", conditioned=True)
+    y = np.array([1.0, 0.1, math.pi - 2.0, 0.0])  # beta_R = pi - 2 gamma - beta_L = 0 exactly
+    H = system.residual(y)
+    assert np.isfinite(H).all()
+    assert np.array_equal(H, system.residual(y, numbers=FLOATS))
+    with pytest.raises(ZeroDivisionError):
+        system.jacobian(y)
 
 @pytest.mark.parametrize("chart", ["beta_L", "sqrt_beta_L"])
 @pytest.mark.parametrize("name", BOUNDARY_NAMES)

@@ -289,6 +289,7 @@ class BoundarySystem:
     validity: dict = field(init=False, repr=False, compare=False)
     validity_gradient: dict = field(init=False, repr=False, compare=False)
     certified_validity: dict = field(init=False, repr=False, compare=False)
+    _kept: tuple | None = field(init=False, repr=False, compare=False, default=None)
 
     def __post_init__(self) -> None:
         if self.name not in BOUNDARY_NAMES:
@@ -383,15 +384,30 @@ class BoundarySystem:
         an array); the same formulas are evaluated in any of them.
         """
         if numbers is None:
-            values, _ = _rows(self._unscaled(x), self.params.k, self.params.c, self.name,
-                              self.chart, FLOATS, jacobian=False, unit=self._unit)
-            return np.array(values)
+            return np.array(self._float_residual(x))
         return [numbers.number(v) for v in self._evaluate(x, numbers, False)[0]]
+
+    def _float_residual(self, y) -> list:
+        """``H(y)`` in floats; the Jacobian's rows, which share its trigonometry (both cost 60 %
+        of the two apart), are kept for a :meth:`jacobian` at the same bits of ``y``: 94 % of
+        the engine's Jacobians are at its last residual's point (a Newton iterate's).
+        The residual alone where only the rows' formulas fail (a quotient by ``q_R = 0``)."""
+        x, p = self._unscaled(y), self.params
+        try:
+            values, rows = _rows(x, p.k, p.c, self.name, self.chart, FLOATS, True, self._unit)
+        except (ArithmeticError, ValueError):
+            values, rows = _rows(x, p.k, p.c, self.name, self.chart, FLOATS, False, self._unit)
+        if rows is not None and isinstance(y, np.ndarray):
+            object.__setattr__(self, "_kept", ((y.dtype, y.tobytes()), rows))
+        return values
 
     def jacobian(self, x, numbers=None):
         """``dH/dx`` with respect to the chart coordinates, analytic: shape (3, 4) floats, or
         three rows of four numbers of ``numbers`` (see :meth:`residual`)."""
         if numbers is None:
+            kept = self._kept
+            if kept is not None and isinstance(x, np.ndarray) and kept[0] == (x.dtype, x.tobytes()):
+                return self._float_jacobian(kept[1])
             return self._float_jacobian(self._evaluate(x, FLOATS, True)[1])
         _, rows = self._evaluate(x, numbers, True)
         scale, number = self.scale, numbers.number
