@@ -89,3 +89,29 @@ def test_table_and_json_file(records, tmp_path, monkeypatch, capsys):
     assert main(["--quick", "--json", str(out)]) == 0
     assert "| cubic | ours |" in capsys.readouterr().out
     assert [item["tool"] for item in json.loads(out.read_text())] == [r.tool for r in records]
+
+
+def test_instruction_counts_need_valgrind_and_a_checkout(monkeypatch, tmp_path, capsys):
+    """benchmarks/instructions.py says what is missing instead of counting nothing."""
+    from benchmarks import instructions
+
+    with pytest.raises(SystemExit) as exit_info:
+        instructions.main(["--checkout", str(tmp_path)])
+    assert exit_info.value.code == 2 and "not a checkout" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        instructions.main(["-n", "0"])
+    monkeypatch.setattr(instructions.shutil, "which", lambda name: None)
+    assert instructions.main([]) == 2
+    assert "valgrind is not installed" in capsys.readouterr().err
+
+
+def test_the_counted_program_runs(tmp_path):
+    """The program callgrind counts traces its k and exits 0 (here without valgrind)."""
+    import subprocess
+
+    from benchmarks import instructions
+
+    for what in ("run", "none"):
+        done = subprocess.run([sys.executable, "-c", instructions.child_code(1), what],
+                              cwd=tmp_path, capture_output=True, text=True)
+        assert done.returncode == 0, done.stderr
