@@ -537,7 +537,7 @@ class StepScan:
         t_a, t_b = float(a.tangent[i]), float(b.tangent[i])
         if not ((t_a > 0.0 and t_b > 0.0) or (t_a < 0.0 and t_b < 0.0)):
             return False
-        chord = (b.x[i] - a.x[i]) / (b.s - a.s)
+        chord = float(b.x[i] - a.x[i]) / (b.s - a.s)  # a bool, not numpy.bool_, below
         c_2 = -6.0 * chord + 3.0 * t_a + 3.0 * t_b
         return 0.25 * abs(c_2) <= (1.0 - CLEAR) * min(abs(t_a), abs(t_b))
 
