@@ -346,6 +346,39 @@ def test_a_link_to_nothing_as_the_output_directory_is_named(argv, tmp_path, caps
         capsys.readouterr().err
 
 
+@pytest.mark.skipif(not Path("/proc/self").is_dir(), reason="needs a /proc file system")
+@pytest.mark.parametrize("argv", [
+    ["trace", "-k", "1", "--out", "/proc/groove-out"],
+    ["map", "-k", "1", "-o", "/proc/groove-map.png", "--no-boundaries"],
+])
+def test_a_directory_where_no_file_can_be_created_is_refused_before_computing(
+        argv, monkeypatch, capsys):
+    # root passes the permission check on /proc, so it was found only when writing: the map
+    # was computed first, and trace printed Python's "[Errno 2] ...: '/proc/groove-out'"
+    monkeypatch.setattr("groove_model.tracing.trace_boundaries",
+                        lambda *a, **k: pytest.fail("traced before the directory was checked"))
+    monkeypatch.setattr("groove_model.plots.regime_map.save_regime_map",
+                        lambda *a, **k: pytest.fail("mapped before the file was checked"))
+    with pytest.raises(SystemExit) as exit_info:
+        main(argv)
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    given = argv[argv.index("--out" if "--out" in argv else "-o") + 1]
+    assert f"{given} cannot be written: " in err and "Errno" not in err
+
+
+def test_an_error_of_the_system_reads_path_then_reason(tmp_path, monkeypatch, capsys):
+    def refused(self, *args, **kwargs):
+        raise PermissionError(13, "Permission denied", str(self))
+
+    monkeypatch.setattr(Path, "mkdir", refused)  # a directory that could not be made after all
+    with pytest.raises(SystemExit) as exit_info:
+        main(["trace", "-k", "1", "--out", str(tmp_path / "new"), "--no-figure"])
+    assert exit_info.value.code == 2
+    assert capsys.readouterr().err == \
+        f"groove trace: error: {tmp_path / 'new'}: Permission denied\n"
+
+
 def test_ctrl_c_while_the_commands_load_is_a_line_not_a_traceback(monkeypatch, capsys):
     main_module = sys.modules[main.__module__]  # the module (its package exports main itself)
 

@@ -275,9 +275,28 @@ def output_directory(text: str) -> Path:
     existing = out if out.exists() else _existing_ancestor(out)
     if existing is not None and not existing.is_dir():
         raise UsageError(f"--out {out} cannot be created: {existing} is a file, not a directory")
-    if existing is not None and not os.access(existing, os.W_OK | os.X_OK):
-        raise UsageError(f"--out {out} cannot be written: {existing} is not writable")
+    if existing is not None:
+        _refuse_unwritable(f"--out {out}", existing)
     return out
+
+
+def _refuse_unwritable(what: str, directory: Path) -> None:
+    """:class:`UsageError` if no file can be created in ``directory``.
+
+    The permission bits are read first (the plain answer for a user); then a nameless file is
+    created and dropped there, since the bits do not tell everything: root passes every
+    permission check, yet nothing can be created under ``/proc`` or on a read-only mount.
+    """
+    if not os.access(directory, os.W_OK | os.X_OK):
+        raise UsageError(f"{what} cannot be written: {directory} is not writable")
+    import tempfile  # only a command that writes reaches here
+
+    try:
+        with tempfile.TemporaryFile(dir=directory):
+            pass
+    except OSError as exc:
+        raise UsageError(f"{what} cannot be written: no file can be created in {directory} "
+                         f"({exc.strerror or exc})") from None
 
 
 def _refuse_dangling_link(option: str, directory: Path, given: Path) -> None:
@@ -336,8 +355,8 @@ def figure_target(text: str) -> tuple[Path, str]:
     existing = target.parent if target.parent.exists() else _existing_ancestor(target.parent)
     if existing is not None and not existing.is_dir():
         raise UsageError(f"{existing} of {target} is a file, not a directory")
-    if existing is not None and not os.access(existing, os.W_OK | os.X_OK):
-        raise UsageError(f"-o {target} cannot be written: {existing} is not writable")
+    if existing is not None:
+        _refuse_unwritable(f"-o {target}", existing)
     return target, fmt
 
 

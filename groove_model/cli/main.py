@@ -79,5 +79,12 @@ def main(argv=None) -> int:
         if isinstance(exc, WriteError):  # the input was fine: the output could not be written
             print(f"groove {args.command}: error: {exc.strerror}", file=sys.stderr)
             return EXIT_FAILED
-        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {exc}\n")
+        parser.exit(EXIT_USAGE, f"groove {args.command}: error: {_os_message(exc)}\n")
     return EXIT_FAILED  # pragma: no cover
+
+
+def _os_message(exc: OSError) -> str:
+    """``path: reason`` for an error of the system, not Python's ``[Errno 2] reason: 'path'``."""
+    if exc.strerror and exc.filename is not None:
+        return f"{exc.filename}: {exc.strerror}"
+    return exc.strerror or str(exc)
