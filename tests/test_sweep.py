@@ -8,6 +8,7 @@ points as tracing each k on its own, that ``groove sweep`` writes the same bytes
 
 import concurrent.futures
 import contextlib
+import multiprocessing
 import os
 import pty
 import signal
@@ -291,9 +292,12 @@ def test_sweep_command_shows_a_bar_on_a_terminal_and_none_when_piped(tmp_path):
     assert b"\r[" in screen and b"2/2 k" in screen
 
 
-def _long_sweep(out: Path, **popen) -> subprocess.Popen:
-    """``groove sweep`` of 4000 k on 2 processes into ``out``, started, with its pipes."""
+def _long_sweep(out: Path, start: str | None = None, **popen) -> subprocess.Popen:
+    """``groove sweep`` of 4000 k on 2 processes into ``out``, started, with its pipes; its
+    workers started by the ``multiprocessing`` method ``start`` if given."""
     code = "import sys; from groove_model.cli.main import main; sys.exit(main(sys.argv[1:]))"
+    if start is not None:
+        code = f"import multiprocessing; multiprocessing.set_start_method({start!r}); {code}"
     return subprocess.Popen([sys.executable, "-c", code, "sweep", "--k-min", "1e-3", "--k-max",
                              "1e3", "-n", "4000", "--jobs", "2", "--out", str(out)],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, **popen)
@@ -335,6 +339,58 @@ def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
     assert process.returncode == 1, stderr
     assert b"a worker process ended abruptly" in stderr and b"Traceback" not in stderr
     assert list(out.iterdir()) == []
+
+
+def _pool_workers(pid: int) -> list[int]:
+    """The pool's workers of the sweep ``pid``: its children, but for the resource tracker, and
+    the children of its fork server."""
+    workers = []
+    for child in _children(pid):
+        try:
+            command = Path(f"/proc/{child}/cmdline").read_bytes()
+        except OSError:
+            continue  # ended meanwhile
+        if b"multiprocessing.forkserver" in command:
+            workers += _children(child)
+        elif b"multiprocessing.resource_tracker" not in command:
+            workers.append(child)
+    return workers
+
+
+def _running(pid: int) -> bool:
+    """Whether ``pid`` still runs (a zombie nobody reaped has ended)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+    except (OSError, IndexError):
+        return False
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux's /proc")
+@pytest.mark.parametrize("start", ["fork", "spawn", "forkserver"])
+def test_the_workers_end_when_the_sweep_is_killed_outright(start, tmp_path):
+    # SIGKILL gives the parent no chance to stop its pool: the workers waited for their next
+    # chunk for ever, orphans (a fork server's workers are its children, not the sweep's)
+    if start not in multiprocessing.get_all_start_methods():
+        pytest.skip(f"no {start!r} start method here")
+    process = _long_sweep(tmp_path / "out", start, start_new_session=True)
+    workers: list[int] = []
+    try:
+        deadline = time.monotonic() + 120
+        while len(workers) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)  # until the pool has started its workers
+            workers = _pool_workers(process.pid)
+        assert len(workers) == 2, f"no worker processes found: {workers}"
+        time.sleep(0.5)  # into their first chunks
+        process.kill()
+        process.communicate(timeout=60)
+        deadline = time.monotonic() + 30
+        while any(map(_running, workers)) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(map(_running, workers)), "a worker ran on after its sweep was killed"
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
+        process.communicate()
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])

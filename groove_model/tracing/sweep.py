@@ -17,8 +17,10 @@ from __future__ import annotations
 
 import collections
 import concurrent.futures
+import multiprocessing
 import os
 import signal
+import threading
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -120,20 +122,39 @@ def _workers(jobs, executor) -> int:
 
 
 def _worker_signals() -> None:
-    """In each worker of ``--jobs``: Ctrl-C, SIGTERM and SIGHUP end the worker at once, quietly.
+    """In each worker of ``--jobs``: Ctrl-C, SIGTERM and SIGHUP end the worker at once, quietly,
+    and so does the end of its parent process, however it ended.
 
     Ctrl-C at a terminal reaches the whole process group. Left to Python's default, a worker
     waiting for its next chunk printed a ``KeyboardInterrupt`` traceback beside the parent's
     one-line message; a forked worker also inherited the parent's SIGTERM handler, which only
     records the signal, so a terminated worker ran on. The parent, which handles the signal,
     stops the sweep and writes nothing. A Ctrl-C the parent ignores (a background job) stays
-    ignored in the workers too.
+    ignored in the workers too. A parent killed outright (SIGKILL, the out-of-memory killer)
+    handles nothing: its workers, which hold both ends of the pool's pipes themselves, waited
+    for their next chunk for ever; :func:`_watch_parent` ends them.
     """
     if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.SIG_DFL)
     for name in ("SIGTERM", "SIGHUP"):  # no SIGHUP on Windows
         if hasattr(signal, name):
             signal.signal(getattr(signal, name), signal.SIG_DFL)
+    threading.Thread(target=_watch_parent, daemon=True, name="groove-watch-parent").start()
+
+
+def _watch_parent() -> None:
+    """End this worker process once the process that started it has ended.
+
+    It waits on the pipe that :mod:`multiprocessing` gives every child for this
+    (``parent_process().join()``): the pipe is closed when the sweep's process ends, however its
+    workers were started (forked, spawned, or by a fork server, whose workers' parent process
+    outlives the sweep).
+    """
+    parent = multiprocessing.parent_process()
+    if parent is None:  # not started by multiprocessing: nothing to watch
+        return
+    parent.join()
+    os._exit(1)  # nobody reads the results: no clean-up to do, no message to give
 
 
 def _in_order(executor, function, chunks: list, window: int, args: tuple,
