@@ -129,6 +129,9 @@ def test_solve_bad_friction(argv, message, capsys):
         (["--gamma", "1.7", "--delta", "0.1"], "gamma = 1.7 rad is outside the allowed range 0 <= gamma <= pi/2"),
         (["--gamma", "0.5", "--delta", "-0.1"], "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma"),
         (["--gamma", "x", "--delta", "0.1"], "gamma = 'x' is not a number"),
+        # it read "delta = 'nan' is outside the allowed range"
+        (["--gamma", "0.5", "--delta", "nan"],
+         "delta = nan is not a finite number; allowed range: 0 <= delta <= gamma"),
         (["--gamma", "0.5", "--delta", "0.1", "--radius", "0.01"], "dimensional results need all of"),
         (["--gamma", "0_5", "--delta", "0.1"], "gamma = '0_5' is not a number"),
         # --g alone used to be ignored without a word

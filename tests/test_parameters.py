@@ -36,9 +36,13 @@ def test_bad_friction(k, error, message):
     "gamma, delta, message",
     [
         (0.5, 0.6, "delta = 0.6 rad is outside the allowed range 0 <= delta <= gamma (gamma = 0.5 rad)"),
-        (2.0, 0.1, "gamma = 2.0 rad is outside the allowed range 0 <= gamma <= pi/2"),
-        (-0.1, 0.0, "gamma = -0.1 rad is outside the allowed range 0 <= gamma <= pi/2"),
-        (0.5, -0.1, "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma"),
+        (2.0, 0.1, "gamma = 2.0 rad is outside the allowed range 0 <= gamma <= pi/2 = 1.57"),
+        (-0.1, 0.0, "gamma = -0.1 rad is outside the allowed range 0 <= gamma <= pi/2 = 1.57"),
+        # the bound's value is named (it read "0 <= delta <= gamma" alone)
+        (0.5, -0.1, "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma "
+                    "(gamma = 0.5 rad)"),
+        (0.5, float("inf"), "delta = inf rad is outside the allowed range finite, "
+                            "0 <= delta <= gamma (gamma = 0.5 rad)"),
         (float("nan"), 0.1, "gamma = nan rad is outside the allowed range finite"),
         ([0.1, 0.5], [0.0, 0.7], "delta = 0.7 rad is outside the allowed range"),
         # tiny angles have only the relative slack: delta five times gamma is outside

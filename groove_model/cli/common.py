@@ -252,7 +252,7 @@ def real(name: str, allowed: str = "a finite number"):
                 f"{name} = {text!r} is not a number; allowed range: {allowed}") from None
         if not math.isfinite(value):
             raise argparse.ArgumentTypeError(
-                f"{name} = {text!r} is outside the allowed range: {allowed}")
+                f"{name} = {text} is not a finite number; allowed range: {allowed}")
         return value
 
     parse.__name__ = name

@@ -344,22 +344,20 @@ def check_domain(gamma, delta):
                         f"{delta!r}") from exc
     gamma_a, delta_a = np.broadcast_arrays(gamma_a, delta_a)
     slack = 4.0 * np.finfo(float).eps
+    bad_delta = delta_a > gamma_a * (1.0 + slack) + 4.0 * _SMALLEST_SUBNORMAL
     checks = (
-        (~np.isfinite(gamma_a), "gamma", gamma_a, "finite, 0 <= gamma <= pi/2"),
-        (~np.isfinite(delta_a), "delta", delta_a, "finite, 0 <= delta <= gamma"),
-        (gamma_a > HALF_PI * (1.0 + slack), "gamma", gamma_a, "0 <= gamma <= pi/2 = 1.5707963..."),
-        (gamma_a < 0.0, "gamma", gamma_a, "0 <= gamma <= pi/2"),
-        (delta_a < 0.0, "delta", delta_a, "0 <= delta <= gamma"),
+        (~np.isfinite(gamma_a), "gamma", "finite, 0 <= gamma <= pi/2 = 1.5707963..."),
+        (gamma_a > HALF_PI * (1.0 + slack), "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
+        (gamma_a < 0.0, "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
+        (~np.isfinite(delta_a), "delta", "finite, 0 <= delta <= gamma"),
+        (delta_a < 0.0, "delta", "0 <= delta <= gamma"),
+        (bad_delta, "delta", "0 <= delta <= gamma"),
     )
-    for bad, name, values, allowed in checks:
+    for bad, name, allowed in checks:
         if np.any(bad):
-            value = float(values[bad].flat[0])
+            i = np.flatnonzero(bad.ravel())[0]
+            value = float((gamma_a if name == "gamma" else delta_a).flat[i])
+            if name == "delta":
+                allowed += f" (gamma = {float(gamma_a.flat[i])!r} rad)"
             raise ValueError(f"{name} = {value!r} rad is outside the allowed range {allowed}")
-    bad = delta_a > gamma_a * (1.0 + slack) + 4.0 * _SMALLEST_SUBNORMAL
-    if np.any(bad):
-        i = np.flatnonzero(bad.ravel())[0]
-        raise ValueError(
-            f"delta = {float(delta_a.flat[i])!r} rad is outside the allowed range "
-            f"0 <= delta <= gamma (gamma = {float(gamma_a.flat[i])!r} rad)"
-        )
     return np.minimum(gamma_a, HALF_PI), np.minimum(delta_a, np.minimum(gamma_a, HALF_PI))
