@@ -271,6 +271,22 @@ def test_every_fail_is_a_counterexample_shown_by_the_command(k, capsys):
     assert all(c.verdict != "inconclusive" for c in report.claims)
 
 
+def test_a_counterexample_outside_the_domain_is_shown_with_its_walls_and_its_mirror(capsys):
+    # delta < 0 (the shallower wall on the left) was printed bare; `groove solve` refuses it
+    assert run_cli(["audit", "-k", "1"]) == 0
+    text = capsys.readouterr().out
+    ce = run_audit((1.0,), use_tracer=False).claim("rs_mu_above_k_if_shallower_slides") \
+        .counterexample
+    assert ce.delta < 0.0
+    walls = re.search(r"\(theta_L = (\S+), theta_R = (\S+): the mirror image of delta = (\S+), "
+                      r"outside the domain 0 <= delta <= gamma", text)
+    assert walls is not None
+    theta_l, theta_r, mirror = map(float, walls.groups())
+    assert theta_l == pytest.approx(ce.gamma + ce.delta, rel=1e-9)
+    assert theta_r == pytest.approx(ce.gamma - ce.delta, rel=1e-9)
+    assert run_cli(["solve", "-k", "1", "--gamma", repr(ce.gamma), "--delta", repr(mirror)]) == 0
+
+
 def test_claims_about_one_side_of_sqrt2_name_the_k_they_skip():
     report = run_audit((1.0, 10.0), use_tracer=False)
     large = report.claim("rs_no_roll_large_k_ends")

@@ -112,4 +112,9 @@ def _summary(report) -> str:
                          f"delta = {ce.delta:.10g}: " + ", ".join(
                              f"{key} = {v:.6g}" if isinstance(v, float) and math.isfinite(v)
                              else f"{key} = {v}" for key, v in ce.values.items()))
+            if ce.delta < 0.0:  # a groove written with the shallower wall on the left
+                lines.append(f"    (theta_L = {ce.gamma + ce.delta:.10g}, theta_R = "
+                             f"{ce.gamma - ce.delta:.10g}: the mirror image of delta = "
+                             f"{-ce.delta:.10g}, outside the domain 0 <= delta <= gamma that "
+                             "`groove solve` takes)")
     return "\n".join(lines)
