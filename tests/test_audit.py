@@ -287,6 +287,18 @@ def test_a_counterexample_outside_the_domain_is_shown_with_its_walls_and_its_mir
     assert run_cli(["solve", "-k", "1", "--gamma", repr(ce.gamma), "--delta", repr(mirror)]) == 0
 
 
+def test_a_summary_cut_short_in_the_table_says_so(capsys):
+    assert run_cli(["audit", "-k", "1"]) == 0
+    text = capsys.readouterr().out
+    report = run_audit((1.0,), use_tracer=False)
+    for c in report.claims:
+        first = c.summary.split(". ")[0]
+        row = next(line for line in text.splitlines() if f" {c.id} " in line)
+        shown = row.split(f" {c.id} ", 1)[1].strip()
+        assert shown == first if len(first) <= 100 else \
+            (len(shown) == 100 and shown.endswith("...") and first.startswith(shown[:-3]))
+
+
 def test_claims_about_one_side_of_sqrt2_name_the_k_they_skip():
     report = run_audit((1.0, 10.0), use_tracer=False)
     large = report.claim("rs_no_roll_large_k_ends")

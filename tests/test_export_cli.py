@@ -130,6 +130,20 @@ def test_close_k_get_their_own_files(tmp_path):
         assert (tmp_path / f"special_points_k{k}.csv").exists()
 
 
+def test_a_k_given_twice_is_traced_once_and_said_so(tmp_path, monkeypatch, capsys):
+    traced = []
+    real = tracer_module.trace_boundaries
+
+    def counting(k, **kwargs):
+        traced.append(getattr(k, "k", k))
+        return real(k, **kwargs)
+
+    monkeypatch.setattr(tracer_module, "trace_boundaries", counting)
+    assert main(["trace", "-k", "2", "1", "2", "--out", str(tmp_path), "--no-figure"]) == 0
+    assert traced == [2.0, 1.0]
+    assert "note: k = 2 given more than once: traced once" in capsys.readouterr().err
+
+
 def test_many_k_get_a_short_distinct_overlay_name():
     ks = list(np.geomspace(1e-2, 1e3, 200))
     name = overlay_name(ks)

@@ -103,7 +103,9 @@ def _summary(report) -> str:
              + ", ".join(f"{n} {v}" for v, n in report.counts().items())
              + f" ({report.seconds:.1f} s)"]
     for c in report.claims:
-        lines.append(f"  {c.verdict:<25}  {c.id:<{width}}  {c.summary.split('. ')[0][:100]}")
+        first = c.summary.split(". ")[0]
+        shown = first if len(first) <= 100 else first[:97] + "..."  # the rest is in claims.md
+        lines.append(f"  {c.verdict:<25}  {c.id:<{width}}  {shown}")
     for c in report.claims:
         if c.counterexample is not None and c.verdict == "fails":
             ce = c.counterexample

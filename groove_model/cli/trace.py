@@ -136,6 +136,10 @@ def run(args) -> int:
     suffix = compliance_label(compliance)
     name = _overlay(args)
     refuse_blocked(outputs(args))
+    repeated = sorted({k for k in args.ks if args.ks.count(k) > 1})
+    if repeated:  # the files of a k are named by it: traced once, written once
+        print(f"groove trace: note: k = {', '.join(map(k_text, repeated))} given more than "
+              "once: traced once", file=sys.stderr)
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
