@@ -208,6 +208,14 @@ def test_groove_trace_certify_prints_a_line_per_boundary(tmp_path, capsys):
     for name in ("dr_limit", "rs_limit", "rs_no_roll"):
         assert f"  {name}: proven: " in out
     assert "excluded: no neighbourhood of the corner" in out
+    # what was proven, by kind: "5 special point(s)" was read against the 3 rows of the file
+    curves = trace_boundaries(1.0, certify=True).curves
+    for name in ("dr_limit", "rs_no_roll"):
+        points = curves[name].certificate.special_points
+        folds = sum(p.kind == "fold" for p in points)
+        zeros = len(points) - folds
+        line = next(line for line in out.splitlines() if line.startswith(f"  {name}: proven: "))
+        assert f"{zeros} event zeros, {folds} fold{'s' if folds > 1 else ''} in boxes" in line
     assert (tmp_path / "boundaries_k1.csv").read_text().splitlines()[1].endswith(",True")
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import collections
 import logging
 import sys
 from pathlib import Path
@@ -205,6 +206,17 @@ def certificate_line(certificate) -> str:
         if inserted else "")
     return (f"proven: {segments} in tubes of radius <= "
             f"{certificate.max_radius:.1e}, points within {certificate.node_distance:.0e}, "
-            f"{len(certificate.special_points)} special point(s) in boxes of radius <= "
+            f"{_zeros(certificate.special_points)} in boxes of radius <= "
             f"{max((p.radius for p in certificate.special_points), default=0.0):.0e}"
             + (f"; {excluded}" if excluded else ""))
+
+
+def _zeros(points) -> str:
+    """What the proven points of a certificate are: ``"1 fold, 4 event zeros"``. They are not
+    the rows of the special-points file: an event zero is proven also where no row marks it
+    (several events vanish at a curve's start), and a start is a row but no zero."""
+    counts = collections.Counter("fold" if p.kind == "fold" else
+                                 "branch point" if p.kind == "branch_point" else "event zero"
+                                 for p in points)
+    return ", ".join(f"{n} {kind}{'s' if n != 1 else ''}" for kind, n in sorted(counts.items())
+                     ) or "no fold or event zero"
