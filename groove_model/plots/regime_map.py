@@ -43,8 +43,8 @@ log = logging.getLogger(__name__)
 CATEGORY_LABELS = {
     "double_rolling_clockwise": "double rolling, clockwise (down the steeper wall)",
     "double_rolling_counterclockwise": "double rolling, counter-clockwise (up the steeper wall)",
-    "rolling_sliding_clockwise": "rolling-sliding (steeper wall slides), clockwise",
-    "rolling_sliding_counterclockwise": "rolling-sliding (steeper wall slides), counter-clockwise",
+    "rolling_sliding_clockwise": "rolling sliding (steeper wall slides), clockwise",
+    "rolling_sliding_counterclockwise": "rolling sliding (steeper wall slides), counter-clockwise",
     "double_sliding": r"double sliding ($\delta = 0$, $\gamma > \arctan k$)",
     "symmetric_no_rotation": r"symmetric, no rotation ($\delta = 0$, $\gamma \leq \arctan k$)",
     "no_rotation": r"no rotation ($\upsilon = 0$ exactly)",
