@@ -24,6 +24,7 @@ from groove_model.plots.overlay import MARKER_LABELS, STYLE_LABELS
 from groove_model.plots.regime_map import (
     CATEGORY_COLOURS,
     CATEGORY_LABELS,
+    SEED_LEGEND,
     draw_regime_map,
     save_regime_map,
     seed_points,
@@ -331,6 +332,11 @@ def test_map_legend_lists_only_what_is_drawn(traced):
         assert STYLE_LABELS["dr_no_roll"] not in texts
         assert MARKER_LABELS["junction"] not in texts
         assert STYLE_LABELS["rs_no_roll"] in texts and MARKER_LABELS["fold_gamma"] in texts
+        # the open circles of the labelled points are explained, last (at k = 1 the circle at
+        # (arctan sqrt 2, 0) was taken for a point of a boundary)
+        assert texts[-1] == SEED_LEGEND
+        circle = artists["legend"].legend_handles[-1]
+        assert circle.get_marker() == "o" and circle.get_markerfacecolor() == "none"
         assert ax.get_xlim()[1] == pytest.approx(90.0 * 1.02)
         assert "deg" in ax.get_xlabel()
     finally:

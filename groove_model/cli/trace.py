@@ -137,10 +137,7 @@ def run(args) -> int:
     suffix = compliance_label(compliance)
     name = _overlay(args)
     refuse_blocked(outputs(args))
-    repeated = sorted({k for k in args.ks if args.ks.count(k) > 1})
-    if repeated:  # the files of a k are named by it: traced once, written once
-        print(f"groove trace: note: k = {', '.join(map(k_text, repeated))} given more than "
-              "once: traced once", file=sys.stderr)
+    _note_repeated(args.ks)
     sets, failed = [], []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
@@ -192,6 +189,17 @@ def run(args) -> int:
               file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _note_repeated(ks: list) -> None:
+    """Say which ``k`` were given more than once: the files of a ``k`` are named by it, so it
+    is traced and written once."""
+    from ..model.parameters import k_text  # loads numpy, as every tracing command does
+
+    repeated = sorted({k for k in ks if ks.count(k) > 1})
+    if repeated:
+        print(f"groove trace: note: k = {', '.join(map(k_text, repeated))} given more than "
+              "once: traced once", file=sys.stderr)
 
 
 def certificate_line(certificate) -> str:

@@ -33,12 +33,16 @@ from .overlay import DIAGONAL_LABEL, MARKER_LABELS, STYLE_LABELS, draw_boundarie
 __all__ = [
     "CATEGORY_COLOURS",
     "CATEGORY_LABELS",
+    "SEED_LEGEND",
     "draw_regime_map",
     "save_regime_map",
     "seed_points",
 ]
 
 log = logging.getLogger(__name__)
+
+#: the legend's entry for the labelled points (open circles)
+SEED_LEGEND = "labelled: the seed points of the boundaries, and the junction"
 
 CATEGORY_LABELS = {
     "double_rolling_clockwise": "double rolling, clockwise (down the steeper wall)",
@@ -303,6 +307,9 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters):
             continue
         handles.append(handle)
         labels.append(text)
+    # the open circles of _label_seed_points (a new user took them for points of a boundary)
+    handles.append(Line2D([], [], marker="o", ms=7, mfc="none", mec="black", mew=1.2, ls=""))
+    labels.append(SEED_LEGEND)
     return ax.legend(handles, labels, loc="upper left", fontsize=7, frameon=False,
                      borderaxespad=0.3)
 
