@@ -54,7 +54,7 @@ def add_parser(subparsers):
     p.add_argument("--deg", action="store_true", help="--gamma and --delta are in degrees")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")
-    dim = p.add_argument_group("dimensional results (all four needed, --poisson below)")
+    dim = p.add_argument_group("dimensional results (need --radius, --young, --mass and --poisson)")
     dim.add_argument("--radius", type=real("radius R"), help="ball radius R in m")
     dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
     dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
