@@ -108,6 +108,38 @@ def test_help_and_solve_import_neither_scipy_nor_matplotlib():
     assert done.stdout.strip().splitlines()[-1] == "[] []"
 
 
+@pytest.mark.parametrize("argv, loaded", [
+    (["--help"], []),
+    (["-v", "solve", "--help"], ["solve"]),
+    (["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"], ["solve"]),
+    (["map", "--help"], ["map"]),
+])
+def test_a_command_loads_its_own_module_only(argv, loaded):
+    # every command's module was imported to build the parser: start-up is paid on every run
+    code = ("import sys\n"
+            "from groove_model.cli import main\n"
+            "try:\n"
+            f"    main({argv!r})\n"
+            "except SystemExit:\n"
+            "    pass\n"
+            "print(sorted(m.rsplit('.', 1)[1] for m in sys.modules if m.startswith("
+            "'groove_model.cli.') and m.rsplit('.', 1)[1] not in ('common', 'main')))\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    assert done.stdout.strip().splitlines()[-1] == repr(loaded)
+
+
+def test_groove_help_lists_every_command_with_the_line_its_module_gives():
+    from groove_model.cli.common import COMMANDS
+
+    lazy, whole = build_parser(()), build_parser()
+    for parser in (lazy, whole):
+        listed = {action.dest: action.help for action in
+                  parser._subparsers._group_actions[0]._choices_actions}
+        assert listed == COMMANDS
+    assert lazy.format_help() == whole.format_help()
+
+
 def test_atlas_command_imports_no_pandas(tmp_path):
     # the atlas writes its CSV files with csv: pandas' import would cost a third of a second
     code = ("import sys\n"
@@ -382,7 +414,7 @@ def test_an_error_of_the_system_reads_path_then_reason(tmp_path, monkeypatch, ca
 def test_ctrl_c_while_the_commands_load_is_a_line_not_a_traceback(monkeypatch, capsys):
     main_module = sys.modules[main.__module__]  # the module (its package exports main itself)
 
-    def interrupted():
+    def interrupted(commands=None):
         raise KeyboardInterrupt
 
     monkeypatch.setattr(main_module, "build_parser", interrupted)

@@ -40,8 +40,6 @@ def add_parser(subparsers):
     """Register ``groove atlas``; returns its parser."""
     p = add_command(
         subparsers, "atlas",
-        help="follow every special point as a curve in k; locate the k where the diagram "
-             "changes shape",
         description="Follow the junction (upsilon = 0 on dr_limit), the maximum of delta along "
                     "dr_limit and the fold in gamma of rs_no_roll (and any other fold) as "
                     "curves in k, by two-parameter continuation in log k, and locate the "

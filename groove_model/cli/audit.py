@@ -37,7 +37,7 @@ audit itself ran.
 def add_parser(subparsers):
     """Register ``groove audit``; returns its parser."""
     p = add_command(
-        subparsers, "audit", help="check every quantitative claim of the paper, with numbers",
+        subparsers, "audit",
         description="Check each statement of fact in the paper's 'Rolling solutions' and "
                     "'Rolling-sliding solutions' paragraphs (and the caption of its Fig. 2) "
                     "for the given friction coefficients: the statement quoted, how it was "

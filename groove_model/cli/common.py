@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # the model loads numpy, which `groove --help` does not need
     from ..model.parameters import Compliance
 
 __all__ = [
+    "COMMANDS",
     "EXIT_FAILED",
     "EXIT_INTERRUPTED",
     "EXIT_OK",
@@ -96,11 +97,28 @@ class _Formatter(argparse.RawDescriptionHelpFormatter):
 _NEGATIVE_NUMBER = re.compile(r"^-(\d|\.\d|inf|nan)", re.IGNORECASE)
 
 
-def add_command(subparsers, name: str, help: str, description: str,
+#: Every ``groove`` command, in the order ``groove --help`` lists them, with its line there. Each
+#: is the module of that name in this package; ``groove`` loads only the one it runs.
+COMMANDS = {
+    "solve": "equilibrium of the ball at one point (gamma, delta)",
+    "trace": "trace every regime boundary for one or more k; write CSVs and an overlay",
+    "plot": "draw an overlay from existing boundaries CSV files",
+    "map": "shade the regime map of the (gamma, delta) plane for one k",
+    "audit": "check every quantitative claim of the paper, with numbers",
+    "sweep": "trace every boundary for many log-spaced k, in parallel, into one CSV",
+    "atlas": "follow every special point as a curve in k; locate the k where the diagram "
+             "changes shape",
+    "compliance": "how the special points and thresholds move with the contact's Poisson ratio",
+    "reproduce": "regenerate every committed result: Figure 2, regime maps, atlas, claims audit",
+}
+
+
+def add_command(subparsers, name: str, description: str,
                 examples: str) -> argparse.ArgumentParser:
-    """Register one ``groove`` command whose help ends with its examples; returns its parser."""
-    parser = subparsers.add_parser(name, help=help, description=description, epilog=examples,
-                                   formatter_class=_Formatter)
+    """Register the ``groove`` command ``name`` (its line in ``groove --help`` is
+    :data:`COMMANDS`'s) whose help ends with its examples; returns its parser."""
+    parser = subparsers.add_parser(name, help=COMMANDS[name], description=description,
+                                   epilog=examples, formatter_class=_Formatter)
     # argparse has no public setting for this; where its attribute is missing, nothing changes
     if hasattr(parser, "_negative_number_matcher"):
         parser._negative_number_matcher = _NEGATIVE_NUMBER

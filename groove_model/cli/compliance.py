@@ -33,7 +33,6 @@ def add_parser(subparsers):
     """Register ``groove compliance``; returns its parser."""
     p = add_command(
         subparsers, "compliance",
-        help="how the special points and thresholds move with the contact's Poisson ratio",
         description="Trace the atlas of special points in k for Mindlin's compliance "
                     "c = 2 (1 - nu)/(2 - nu) at several Poisson ratios, and in nu over "
                     "[0, 0.5] at fixed k; report which thresholds and special points move, "

@@ -1,20 +1,22 @@
 """The ``groove`` command line: the parser with every command, and the entry point.
 
-Each command is one module of this package with ``add_parser(subparsers)`` and ``run(args)``;
-exit codes and argument types are in :mod:`groove_model.cli.common`.
+Each command is one module of this package with ``add_parser(subparsers)`` and ``run(args)``,
+listed in :data:`~groove_model.cli.common.COMMANDS`; exit codes and argument types are in
+:mod:`groove_model.cli.common`. ``groove COMMAND ...`` loads that command's module only (the
+others are listed, with their line of help, but not loaded): start-up is part of every run.
 """
 
 from __future__ import annotations
 
 import argparse
+import importlib
 import logging
 import os
 import sys
+from collections.abc import Collection, Sequence
 
 from .. import __version__
-from . import atlas, audit, compliance, plot, reproduce, solve, sweep, trace
-from . import map as regime_map
-from .common import EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, UsageError, add_verbose
+from .common import COMMANDS, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, UsageError, add_verbose
 
 __all__ = ["build_parser", "main"]
 
@@ -31,8 +33,15 @@ _EXAMPLES = """examples:
 run 'groove COMMAND --help' for each command's options and examples"""
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``groove`` argument parser with every subcommand."""
+def build_parser(commands: Collection[str] | None = None) -> argparse.ArgumentParser:
+    """The ``groove`` argument parser.
+
+    Parameters
+    ----------
+    commands : collection of str, optional
+        The commands whose options are loaded (their modules imported); the others are listed
+        with their line of help only, and parse no options. ``None``: every command.
+    """
     parser = argparse.ArgumentParser(
         prog="groove",
         description="Regime boundaries of an elastic ball in a rigid V-groove "
@@ -42,16 +51,30 @@ def build_parser() -> argparse.ArgumentParser:
                         version=f"%(prog)s {__version__} (groove-continuation)")
     add_verbose(parser)
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
-    for command in (solve, trace, plot, regime_map, audit, sweep, atlas, compliance):
-        command.add_parser(sub)
-    reproduce.add_parser(sub, parser)
+    for name, summary in COMMANDS.items():
+        if commands is None or name in commands:
+            importlib.import_module(f"{__package__}.{name}").add_parser(sub)
+        else:
+            sub.add_parser(name, help=summary)
     return parser
+
+
+def _commands_to_load(argv: Sequence[str]) -> tuple[str, ...] | None:
+    """The command ``argv`` runs, as :func:`build_parser`'s ``commands``: none for ``groove``'s
+    own options (``--help``, ``--version``), every one where the command is not plain to see."""
+    for token in argv:
+        if token in ("-h", "--help", "--version"):
+            return ()
+        if token == "--" or not token.startswith("-"):
+            return (token,) if token in COMMANDS else None
+    return ()
 
 
 def main(argv=None) -> int:
     """Entry point of the ``groove`` console script; returns the exit code."""
+    argv = sys.argv[1:] if argv is None else list(argv)
     try:
-        parser = build_parser()
+        parser = build_parser(_commands_to_load(argv))
         args = parser.parse_args(argv)
     except KeyboardInterrupt:  # Ctrl-C while the commands load: nothing was written
         print("groove: interrupted", file=sys.stderr)

@@ -56,7 +56,7 @@ def _resolution(text: str) -> int:
 def add_parser(subparsers):
     """Register ``groove map``; returns its parser."""
     p = add_command(
-        subparsers, "map", help="shade the regime map of the (gamma, delta) plane for one k",
+        subparsers, "map",
         description="Classify every point of 0 <= delta <= gamma <= pi/2 with the point solver "
                     "(double rolling or rolling sliding, clockwise or counter-clockwise), shade "
                     "the regions, overlay the traced boundaries, and write the figure. The "

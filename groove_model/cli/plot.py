@@ -24,7 +24,7 @@ _EXAMPLES = """examples:
 def add_parser(subparsers):
     """Register ``groove plot``; returns its parser."""
     p = add_command(
-        subparsers, "plot", help="draw an overlay from existing boundaries CSV files",
+        subparsers, "plot",
         description="Draw the boundaries stored in boundaries_k*.csv files (one k per file, as "
                     "groove trace writes them) onto one overlay. A file holding several k, a "
                     "k given by two files, or a point outside 0 <= delta <= gamma <= pi/2 is "

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import functools
 import logging
 from pathlib import Path
 
@@ -22,19 +21,17 @@ groove compliance --out OUT/compliance; groove audit --trace --out OUT
 """
 
 
-def add_parser(subparsers, groove_parser):
-    """Register ``groove reproduce``; ``groove_parser`` (the whole ``groove`` parser) parses its
-    steps. Returns its parser."""
+def add_parser(subparsers):
+    """Register ``groove reproduce``; returns its parser."""
     p = add_command(
         subparsers, "reproduce",
-        help="regenerate every committed result: Figure 2, regime maps, atlas, claims audit",
         description="Regenerate the paper's Figure 2 (boundaries for k = 1 and 10, CSV and "
                     "figure), the regime maps for k = 1 and 10, the atlas of special points in "
                     "k with its thresholds, its comparison for three Poisson ratios, and the "
                     "audit of the paper's claims, into one directory.",
         examples=_EXAMPLES)
     p.add_argument("--out", default="results", help="output directory (default results/)")
-    p.set_defaults(run=functools.partial(run, groove_parser=groove_parser))
+    p.set_defaults(run=run)
     return p
 
 
@@ -50,9 +47,14 @@ def steps(out: Path) -> tuple:
     )
 
 
-def run(args, groove_parser) -> int:
+def run(args) -> int:
     """Run each step; stop at the first that does not return 0 and return its exit code."""
+    # the whole parser, every command loaded, parses the steps; imported here, as main imports
+    # this module
+    from .main import build_parser
+
     out = output_directory(args.out)
+    groove_parser = build_parser()
     parsed = [groove_parser.parse_args(argv) for argv in steps(out)]
     # every step's places before the first step runs: a later one that would refuse them left
     # the files of the earlier ones rewritten

@@ -39,7 +39,7 @@ JSON_KEYS = ("k", "compliance", "regime", "rotation", "gamma", "delta", "theta_L
 def add_parser(subparsers):
     """Register ``groove solve``; returns its parser."""
     p = add_command(
-        subparsers, "solve", help="equilibrium of the ball at one point (gamma, delta)",
+        subparsers, "solve",
         description="Print the equilibrium the paper predicts at one groove geometry: regime, "
                     "loading direction beta_L, beta_R, rolling upsilon, force ratios, slip, "
                     "rotation sense. Angles in radians unless --deg.",

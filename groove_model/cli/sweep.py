@@ -40,7 +40,6 @@ def add_parser(subparsers):
     """Register ``groove sweep``; returns its parser."""
     p = add_command(
         subparsers, "sweep",
-        help="trace every boundary for many log-spaced k, in parallel, into one CSV",
         description="Trace every regime boundary (as groove trace does) for n values of k "
                     "log-spaced from --k-min to --k-max, on --jobs processes, and stream the "
                     "rows into one CSV in long format (a k column) plus one table of the "

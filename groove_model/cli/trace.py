@@ -52,7 +52,6 @@ def add_parser(subparsers):
     """Register ``groove trace``; returns its parser."""
     p = add_command(
         subparsers, "trace",
-        help="trace every regime boundary for one or more k; write CSVs and an overlay",
         description="Follow each boundary of the paper (T = kN on the steeper wall, upsilon = 0 "
                     "in double rolling and in rolling sliding) from the seed points the paper "
                     "names, by pseudo-arclength continuation, and write them as CSV and as an "
