@@ -317,6 +317,7 @@ def test_map_draws_onto_the_given_axes(traced):
             assert CATEGORY_LABELS[name] in texts
         labels = {a.get_text() for a in artists["seeds"] if hasattr(a, "get_text")}
         assert labels == set(seed_points(10.0))
+        assert texts[-1] == SEED_LEGEND
         assert ax.get_legend() is artists["legend"]
         assert plt.gcf() is fig and len(plt.get_fignums()) == 1
     finally:
@@ -332,11 +333,15 @@ def test_map_legend_lists_only_what_is_drawn(traced):
         assert STYLE_LABELS["dr_no_roll"] not in texts
         assert MARKER_LABELS["junction"] not in texts
         assert STYLE_LABELS["rs_no_roll"] in texts and MARKER_LABELS["fold_gamma"] in texts
-        # the open circles of the labelled points are explained, last (at k = 1 the circle at
-        # (arctan sqrt 2, 0) was taken for a point of a boundary)
-        assert texts[-1] == SEED_LEGEND
+        # the open circles of the labelled points are explained, last, without the junction
+        # there is none at k = 1; the circle at (arctan sqrt 2, 0), where nothing is drawn
+        # below k = sqrt 2, read as a point of a boundary and is gone
+        assert texts[-1] == "labelled: the seed points of the boundaries"
+        assert SEED_LEGEND == texts[-1] + ", and the junction"
         circle = artists["legend"].legend_handles[-1]
         assert circle.get_marker() == "o" and circle.get_markerfacecolor() == "none"
+        labels = {a.get_text() for a in artists["seeds"] if hasattr(a, "get_text")}
+        assert labels == set(seed_points(1.0)) - {r"$(\arctan\sqrt{2},\,0)$"}
         assert ax.get_xlim()[1] == pytest.approx(90.0 * 1.02)
         assert "deg" in ax.get_xlabel()
     finally:

@@ -114,6 +114,17 @@ def _seed_points(params: Parameters) -> dict:
     return points
 
 
+def _drawn_seed_points(params: Parameters) -> dict:
+    """The seed points labelled on the map: :func:`seed_points` but for the branch point
+    ``(arctan sqrt 2, 0)`` where the double-rolling ``upsilon = 0`` line has no physical part
+    (``k < c sqrt 2``, no junction): nothing is drawn there, and a circle on the
+    double-sliding segment read as a point of a boundary."""
+    points = _seed_points(params)
+    if _JUNCTION_LABEL not in points:
+        del points[r"$(\arctan\sqrt{2},\,0)$"]
+    return points
+
+
 def _label_offsets(params: Parameters, points: dict) -> dict:
     """Where each seed label goes, in points from the seed, chosen to keep labels apart (the
     junction's to the right of the seed's where the two points are within 0.15 rad, for
@@ -214,7 +225,7 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
                         "; ".join(boundary_set.failures))
         artists["boundary_set"] = boundary_set
         artists["boundaries"], boundary_handles = _overlay_boundaries(ax, boundary_set, degrees)
-    points = _seed_points(params)
+    points = _drawn_seed_points(params)
     artists["regions"] = label_regions(
         ax, region_label_positions([params], codes_list=[codes],
                                    avoid=_seed_label_area(params, points)),
@@ -222,7 +233,8 @@ def _draw(ax, params: Parameters, n: int, boundaries: bool, degrees: bool, bound
     artists["seeds"] = _label_seed_points(ax, params, points, scale)
     _frame_axes(ax, top, "deg" if degrees else "rad")
     if legend:
-        artists["legend"] = _legend(ax, codes, boundary_handles, params)
+        artists["legend"] = _legend(ax, codes, boundary_handles, params,
+                                    junction=_JUNCTION_LABEL in points)
     return artists
 
 
@@ -288,8 +300,10 @@ def _frame_axes(ax, top: float, unit: str) -> None:
     ax.set_ylabel(rf"$\delta = (\theta_L - \theta_R)/2$ ({unit})")
 
 
-def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters):
-    """Each region present in words, the two axis segments, then the boundaries' entries."""
+def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters,
+            junction: bool):
+    """Each region present in words, the two axis segments, then the boundaries' entries and
+    the labelled points' (``junction``: the junction is one of them)."""
     present = set(np.unique(codes[codes != OUTSIDE]).tolist())
     present |= {CATEGORY_CODE[name] for name in _AXIS_SEGMENTS}
     handles: list[Artist] = []
@@ -309,7 +323,7 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters):
         labels.append(text)
     # the open circles of _label_seed_points (a new user took them for points of a boundary)
     handles.append(Line2D([], [], marker="o", ms=7, mfc="none", mec="black", mew=1.2, ls=""))
-    labels.append(SEED_LEGEND)
+    labels.append(SEED_LEGEND if junction else SEED_LEGEND.split(", and")[0])
     return ax.legend(handles, labels, loc="upper left", fontsize=7, frameon=False,
                      borderaxespad=0.3)
 
