@@ -152,12 +152,22 @@ def test_the_guide_documents_every_command():
     assert available <= commands
 
 
+def _anchors(path: Path) -> set[str]:
+    """The anchors GitHub gives the headings of a markdown file: lower case, spaces as hyphens,
+    other punctuation dropped."""
+    headings = re.findall(r"^#+ (.+)$", FENCE.sub("", path.read_text()), re.MULTILINE)
+    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-") for h in headings}
+
+
 @pytest.mark.parametrize("path", DOCUMENTS, ids=lambda p: p.name)
 def test_links_resolve(path):
-    for target in re.findall(r"\]\(([^)#\s]+)(?:#[^)]*)?\)", path.read_text()):
+    for target, anchor in re.findall(r"\]\(([^)#\s]*)(?:#([^)\s]*))?\)", path.read_text()):
         if re.match(r"[a-z]+:", target):
             continue
-        assert (path.parent / target).exists(), f"{path.name} links to missing {target}"
+        linked = path.parent / target if target else path
+        assert linked.exists(), f"{path.name} links to missing {target}"
+        if anchor and linked.suffix == ".md":  # a section of it (it read #groove-audit)
+            assert anchor in _anchors(linked), f"{path.name} links to missing {target}#{anchor}"
 
 
 def test_nothing_points_to_files_outside_the_repository():
