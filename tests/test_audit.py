@@ -278,12 +278,13 @@ def test_a_counterexample_outside_the_domain_is_shown_with_its_walls_and_its_mir
     ce = run_audit((1.0,), use_tracer=False).claim("rs_mu_above_k_if_shallower_slides") \
         .counterexample
     assert ce.delta < 0.0
-    walls = re.search(r"\(theta_L = (\S+), theta_R = (\S+): the mirror image of delta = (\S+), "
-                      r"outside the domain 0 <= delta <= gamma", text)
+    walls = re.search(r"\(walls theta_L = (\S+), theta_R = (\S+): the shallower wall on the "
+                      r"left, delta < 0, outside the domain 0 <= delta <= gamma; its mirror "
+                      r"image, which groove solve takes, is delta = (\S+)\)", text)
     assert walls is not None
     theta_l, theta_r, mirror = map(float, walls.groups())
-    assert theta_l == pytest.approx(ce.gamma + ce.delta, rel=1e-9)
-    assert theta_r == pytest.approx(ce.gamma - ce.delta, rel=1e-9)
+    assert theta_l == ce.gamma + ce.delta and theta_r == ce.gamma - ce.delta  # printed in full
+    assert f"gamma = {ce.gamma!r}, delta = {ce.delta!r}: " in text
     assert run_cli(["solve", "-k", "1", "--gamma", repr(ce.gamma), "--delta", repr(mirror)]) == 0
 
 
@@ -291,12 +292,18 @@ def test_a_summary_cut_short_in_the_table_says_so(capsys):
     assert run_cli(["audit", "-k", "1"]) == 0
     text = capsys.readouterr().out
     report = run_audit((1.0,), use_tracer=False)
+    cut = 0
     for c in report.claims:
         first = c.summary.split(". ")[0]
         row = next(line for line in text.splitlines() if f" {c.id} " in line)
         shown = row.split(f" {c.id} ", 1)[1].strip()
-        assert shown == first if len(first) <= 100 else \
-            (len(shown) == 100 and shown.endswith("...") and first.startswith(shown[:-3]))
+        if len(first) <= 100:
+            assert shown == first
+        else:  # cut at a word (it read "topologi...")
+            cut += 1
+            assert len(shown) <= 101 and shown.endswith(" ...") and first.startswith(shown[:-4])
+            assert first[len(shown) - 4] == " "
+    assert cut and "has each in full" in text
 
 
 def test_claims_about_one_side_of_sqrt2_name_the_k_they_skip():

@@ -397,6 +397,7 @@ def test_a_directory_where_no_file_can_be_created_is_refused_before_computing(
     err = capsys.readouterr().err
     given = argv[argv.index("--out" if "--out" in argv else "-o") + 1]
     assert f"{given} cannot be written: " in err and "Errno" not in err
+    assert "creating a file in /proc failed: " in err or "/proc is not writable" in err
 
 
 def test_an_error_of_the_system_reads_path_then_reason(tmp_path, monkeypatch, capsys):

@@ -132,6 +132,15 @@ def test_solve_bad_friction(argv, message, capsys):
         # it read "delta = 'nan' is outside the allowed range"
         (["--gamma", "0.5", "--delta", "nan"],
          "delta = nan is not a finite number; allowed range: 0 <= delta <= gamma"),
+        # it read "allowed range: a finite number", where --radius -1 says "> 0"
+        (["--gamma", "0.5", "--delta", "0.1", "--radius", "inf", "--young", "1e9", "--poisson",
+          "0.3", "--mass", "1"], "radius R = inf is not a finite number; allowed range: finite "
+                                 "and > 0"),
+        # it read "compliance ratio = 'nan'" (trace: "compliance ratio c = nan")
+        (["--gamma", "0.5", "--delta", "0.1", "--compliance", "nan"],
+         "compliance ratio c = nan is outside the allowed range: finite and > 0"),
+        (["--gamma", "0.5", "--delta", "0.1", "--compliance", "x"],
+         "compliance ratio c = 'x' is not a number"),
         (["--gamma", "0.5", "--delta", "0.1", "--radius", "0.01"], "dimensional results need all of"),
         (["--gamma", "0_5", "--delta", "0.1"], "gamma = '0_5' is not a number"),
         # --g alone used to be ignored without a word

@@ -102,21 +102,25 @@ def _summary(report) -> str:
     lines = [f"audit of the paper's claims for k = {', '.join(map(k_text, report.ks))}: "
              + ", ".join(f"{n} {v}" for v, n in report.counts().items())
              + f" ({report.seconds:.1f} s)"]
+    cut = False
     for c in report.claims:
         first = c.summary.split(". ")[0]
-        shown = first if len(first) <= 100 else first[:97] + "..."  # the rest is in claims.md
+        shown = first if len(first) <= 100 else first[:97].rsplit(" ", 1)[0] + " ..."
+        cut |= shown != first
         lines.append(f"  {c.verdict:<25}  {c.id:<{width}}  {shown}")
+    if cut:
+        lines.append("  (a summary cut short ends in '...'; --json, or claims.md with --out, "
+                     "has each in full)")
     for c in report.claims:
         if c.counterexample is not None and c.verdict == "fails":
             ce = c.counterexample
             lines.append(f"  counterexample to {c.id}: k = {k_text(ce.k)}, "
-                         f"gamma = {ce.gamma:.10g}, "
-                         f"delta = {ce.delta:.10g}: " + ", ".join(
+                         f"gamma = {ce.gamma!r}, delta = {ce.delta!r}: " + ", ".join(
                              f"{key} = {v:.6g}" if isinstance(v, float) and math.isfinite(v)
                              else f"{key} = {v}" for key, v in ce.values.items()))
             if ce.delta < 0.0:  # a groove written with the shallower wall on the left
-                lines.append(f"    (theta_L = {ce.gamma + ce.delta:.10g}, theta_R = "
-                             f"{ce.gamma - ce.delta:.10g}: the mirror image of delta = "
-                             f"{-ce.delta:.10g}, outside the domain 0 <= delta <= gamma that "
-                             "`groove solve` takes)")
+                lines.append(f"    (walls theta_L = {ce.gamma + ce.delta!r}, theta_R = "
+                             f"{ce.gamma - ce.delta!r}: the shallower wall on the left, "
+                             "delta < 0, outside the domain 0 <= delta <= gamma; its mirror "
+                             f"image, which groove solve takes, is delta = {-ce.delta!r})")
     return "\n".join(lines)

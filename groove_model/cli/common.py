@@ -313,8 +313,8 @@ def _refuse_unwritable(what: str, directory: Path) -> None:
         with tempfile.TemporaryFile(dir=directory):
             pass
     except OSError as exc:
-        raise UsageError(f"{what} cannot be written: no file can be created in {directory} "
-                         f"({exc.strerror or exc})") from None
+        raise UsageError(f"{what} cannot be written: creating a file in {directory} failed: "
+                         f"{exc.strerror or exc}") from None
 
 
 def _refuse_dangling_link(option: str, directory: Path, given: Path) -> None:
@@ -398,11 +398,13 @@ def _ratio(text: str) -> float:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import Compliance
 
+    value = _number(text, f"compliance ratio c = {text!r} is not a number; allowed range: "
+                          "finite and > 0")
     try:
-        return Compliance(_float(text)).ratio
+        return Compliance(value).ratio
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"compliance ratio = {text!r} is outside the allowed range: finite and > 0"
+            f"compliance ratio c = {value!r} is outside the allowed range: finite and > 0"
         ) from None
 
 

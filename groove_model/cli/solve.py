@@ -55,10 +55,12 @@ def add_parser(subparsers):
     p.add_argument("--json", action="store_true",
                    help="print one JSON object (angles in radians)")
     dim = p.add_argument_group("dimensional results (need --radius, --young, --mass and --poisson)")
-    dim.add_argument("--radius", type=real("radius R"), help="ball radius R in m")
-    dim.add_argument("--young", type=real("Young's modulus E"), help="Young's modulus E in Pa")
-    dim.add_argument("--mass", type=real("mass M"), help="ball mass M in kg")
-    dim.add_argument("--g", type=real("g"), help="gravity in m/s^2 (default 9.81)")
+    positive = "finite and > 0"
+    dim.add_argument("--radius", type=real("radius R", positive), help="ball radius R in m")
+    dim.add_argument("--young", type=real("Young's modulus E", positive),
+                     help="Young's modulus E in Pa")
+    dim.add_argument("--mass", type=real("mass M", positive), help="ball mass M in kg")
+    dim.add_argument("--g", type=real("g", positive), help="gravity in m/s^2 (default 9.81)")
     add_compliance_options(p, poisson_help="also the nu of the SI results", traced=False)
     p.set_defaults(run=run)
     return p
