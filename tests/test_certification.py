@@ -207,15 +207,18 @@ def test_groove_trace_certify_prints_a_line_per_boundary(tmp_path, capsys):
     out = capsys.readouterr().out
     for name in ("dr_limit", "rs_limit", "rs_no_roll"):
         assert f"  {name}: proven: " in out
-    assert "excluded: no neighbourhood of the corner" in out
-    # what was proven, by kind: "5 special point(s)" was read against the 3 rows of the file
-    curves = trace_boundaries(1.0, certify=True).curves
-    for name in ("dr_limit", "rs_no_roll"):
-        points = curves[name].certificate.special_points
-        folds = sum(p.kind == "fold" for p in points)
-        zeros = len(points) - folds
+    # radius 0: nothing left out at the corner (it read "excluded: no neighbourhood of ...")
+    assert "covered: the corner (pi/4, pi/4) itself" in out and "excluded" not in out
+    # what was proven, by kind, the special points apart: "5 special point(s)" was read against
+    # the 3 rows of the file
+    listed = trace_boundaries(1.0).special_points_frame()
+    rows = {"dr_limit": "1 event zero, 1 fold of the special points, and 3 more zeros",
+            "rs_no_roll": "1 event zero, 1 fold of the special points, and 5 more zeros"}
+    for name, text in rows.items():
         line = next(line for line in out.splitlines() if line.startswith(f"  {name}: proven: "))
-        assert f"{zeros} event zeros, {folds} fold{'s' if folds > 1 else ''} in boxes" in line
+        assert f"{text} of folds and events, in boxes" in line
+        kinds = listed.loc[listed["boundary"] == name, "kind"]
+        assert kinds.str.startswith("fold").sum() == 1  # the one fold the line counts
     assert (tmp_path / "boundaries_k1.csv").read_text().splitlines()[1].endswith(",True")
 
 

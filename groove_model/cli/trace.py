@@ -205,7 +205,7 @@ def certificate_line(certificate) -> str:
     """One line for a boundary's certificate: proven, what is not covered, or what failed."""
     if not certificate.proven:
         return certificate.message
-    excluded = "; ".join(f"not covered: {e.note}" if e.radius > 0 else f"excluded: {e.note}"
+    excluded = "; ".join(f"not covered: {e.note}" if e.radius > 0 else f"covered: {e.note}"
                          for e in certificate.excluded)
     inserted = certificate.inserted_points
     segments = f"{certificate.segments} segments" + (
@@ -213,17 +213,26 @@ def certificate_line(certificate) -> str:
         if inserted else "")
     return (f"proven: {segments} in tubes of radius <= "
             f"{certificate.max_radius:.1e}, points within {certificate.node_distance:.0e}, "
-            f"{_zeros(certificate.special_points)} in boxes of radius <= "
+            f"{_zeros(certificate.special_points)}, in boxes of radius <= "
             f"{max((p.radius for p in certificate.special_points), default=0.0):.0e}"
             + (f"; {excluded}" if excluded else ""))
 
 
 def _zeros(points) -> str:
-    """What the proven points of a certificate are: ``"1 fold, 4 event zeros"``. They are not
-    the rows of the special-points file: an event zero is proven also where no row marks it
-    (several events vanish at a curve's start), and a start is a row but no zero."""
-    counts = collections.Counter("fold" if p.kind == "fold" else
-                                 "branch point" if p.kind == "branch_point" else "event zero"
-                                 for p in points)
-    return ", ".join(f"{n} {kind}{'s' if n != 1 else ''}" for kind, n in sorted(counts.items())
-                     ) or "no fold or event zero"
+    """What the proven points of a certificate are, by kind: ``"1 fold, 1 event zero of the
+    special points, and 5 more zeros of folds and events"``. Only the first are rows of the
+    special-points file; the others (where several events vanish at a curve's start, where
+    ``gamma`` and ``delta`` turn at the corner it ends in) mark none."""
+    def kinds(chosen) -> str:
+        counts = collections.Counter("fold" if p.kind == "fold" else "branch point"
+                                     if p.kind == "branch_point" else "event zero"
+                                     for p in chosen)
+        return ", ".join(f"{n} {kind}{'s' if n != 1 else ''}"
+                         for kind, n in sorted(counts.items()))
+
+    listed = [p for p in points if p.reported]
+    others = len(points) - len(listed)
+    text = f"{kinds(listed)} of the special points" if listed else "no special point"
+    if others:
+        text += f", and {others} more zero{'s' if others != 1 else ''} of folds and events"
+    return text

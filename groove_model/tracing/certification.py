@@ -60,9 +60,10 @@ def _not_covered(curve: BoundaryCurve, system, gamma_min: float) -> tuple:
                              f"the continuation towards the singular origin below gamma = "
                              f"{gamma_min:.3g} is not traced"))
     if curve.end is Where.CORNER:
-        out.append(Exclusion(corner_point()[:2], 0.0, "no neighbourhood of the corner "
-                             "(pi/4, pi/4) (radius 0): it is a regular point of the chart "
-                             "w = sqrt(beta_L), proven as the zero of the end event"))
+        # radius 0: nothing is left out (the CLI says "covered")
+        out.append(Exclusion(corner_point()[:2], 0.0, "the corner (pi/4, pi/4) itself, a "
+                             "regular point of the chart w = sqrt(beta_L), proven as the zero "
+                             "of the end event"))
     return tuple(out)
 
 
