@@ -281,8 +281,10 @@ def _label_seed_points(ax, params: Parameters, points: dict, scale: float) -> li
     offsets = _label_offsets(params, points)
     for label, (g, d) in points.items():
         xy = (g * scale, d * scale)
-        artists += ax.plot(*xy, marker="o", ms=7, mfc="none", mec="black", mew=1.2, ls="",
-                           zorder=4)
+        # under the boundaries' markers (zorder 3), which it rings: an end square at the
+        # corner (pi/4, pi/4) was hidden under it
+        artists += ax.plot(*xy, marker="o", ms=8, mfc="none", mec="black", mew=1.2, ls="",
+                           zorder=2.9)
         artists.append(ax.annotate(
             label, xy, xytext=offsets[label], textcoords="offset points", fontsize=8,
             ha="center", va="bottom", zorder=5,
