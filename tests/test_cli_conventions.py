@@ -91,6 +91,13 @@ def test_python_dash_m():
     assert '"regime": "rolling_sliding"' in done.stdout
 
 
+def _last_line_printed(code: str) -> str:
+    """The last line ``code`` prints, run in a new Python process (nothing imported yet)."""
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    return done.stdout.strip().splitlines()[-1]
+
+
 def test_help_and_solve_import_neither_scipy_nor_matplotlib():
     code = ("import sys\n"
             "from groove_model.cli import main\n"
@@ -103,9 +110,7 @@ def test_help_and_solve_import_neither_scipy_nor_matplotlib():
             "main(['solve', '--gamma', '0.6', '--delta', '0.2', '-k', '1'])\n"
             "solve_loaded = {m for m in ('scipy', 'pandas', 'matplotlib') if m in sys.modules}\n"
             "print(sorted(help_loaded), sorted(solve_loaded))\n")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          check=True)
-    assert done.stdout.strip().splitlines()[-1] == "[] []"
+    assert _last_line_printed(code) == "[] []"
 
 
 @pytest.mark.parametrize("argv, loaded", [
@@ -124,9 +129,7 @@ def test_a_command_loads_its_own_module_only(argv, loaded):
             "    pass\n"
             "print(sorted(m.rsplit('.', 1)[1] for m in sys.modules if m.startswith("
             "'groove_model.cli.') and m.rsplit('.', 1)[1] not in ('common', 'main')))\n")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          check=True)
-    assert done.stdout.strip().splitlines()[-1] == repr(loaded)
+    assert _last_line_printed(code) == repr(loaded)
 
 
 def test_groove_help_lists_every_command_with_the_line_its_module_gives():
@@ -147,9 +150,7 @@ def test_atlas_command_imports_no_pandas(tmp_path):
             "main(['atlas', '--k-min', '0.5', '--k-max', '2', '--no-figure',"
             f" '--out', {str(tmp_path)!r}])\n"
             "print('pandas' in sys.modules)\n")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          check=True)
-    assert done.stdout.strip().splitlines()[-1] == "False"
+    assert _last_line_printed(code) == "False"
 
 
 def test_py_typed_marker_is_shipped():
