@@ -6,6 +6,7 @@ import logging
 from pathlib import Path
 
 from .common import EXIT_OK, add_command, output_directory, refuse_blocked
+from .main import build_parser
 
 __all__ = ["add_parser", "run"]
 
@@ -49,12 +50,8 @@ def steps(out: Path) -> tuple:
 
 def run(args) -> int:
     """Run each step; stop at the first that does not return 0 and return its exit code."""
-    # the whole parser, every command loaded, parses the steps; imported here, as main imports
-    # this module
-    from .main import build_parser
-
     out = output_directory(args.out)
-    groove_parser = build_parser()
+    groove_parser = build_parser()  # the whole parser, every command loaded, parses the steps
     parsed = [groove_parser.parse_args(argv) for argv in steps(out)]
     # every step's places before the first step runs: a later one that would refuse them left
     # the files of the earlier ones rewritten
