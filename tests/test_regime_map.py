@@ -317,7 +317,7 @@ def test_map_draws_onto_the_given_axes(traced):
             assert CATEGORY_LABELS[name] in texts
         labels = {a.get_text() for a in artists["seeds"] if hasattr(a, "get_text")}
         assert labels == set(seed_points(10.0))
-        assert texts[-1] == SEED_LEGEND
+        assert texts[-1] == SEED_LEGEND + ", and the junction"
         assert ax.get_legend() is artists["legend"]
         assert plt.gcf() is fig and len(plt.get_fignums()) == 1
     finally:
@@ -336,8 +336,7 @@ def test_map_legend_lists_only_what_is_drawn(traced):
         # the open circles of the labelled points are explained, last, without the junction
         # there is none at k = 1; the circle at (arctan sqrt 2, 0), where nothing is drawn
         # below k = sqrt 2, read as a point of a boundary and is gone
-        assert texts[-1] == "labelled: the seed points of the boundaries"
-        assert SEED_LEGEND == texts[-1] + ", and the junction"
+        assert texts[-1] == SEED_LEGEND == "labelled: the seed points of the boundaries"
         circle = artists["legend"].legend_handles[-1]
         assert circle.get_marker() == "o" and circle.get_markerfacecolor() == "none"
         labels = {a.get_text() for a in artists["seeds"] if hasattr(a, "get_text")}

@@ -195,7 +195,7 @@ def _note_repeated(ks: list) -> None:
     is traced and written once."""
     from ..model.parameters import k_text  # loads numpy, as every tracing command does
 
-    repeated = sorted({k for k in ks if ks.count(k) > 1})
+    repeated = sorted(k for k, n in collections.Counter(ks).items() if n > 1)
     if repeated:
         print(f"groove trace: note: k = {', '.join(map(k_text, repeated))} given more than "
               "once: traced once", file=sys.stderr)

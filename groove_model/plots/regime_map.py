@@ -41,8 +41,9 @@ __all__ = [
 
 log = logging.getLogger(__name__)
 
-#: the legend's entry for the labelled points (open circles)
-SEED_LEGEND = "labelled: the seed points of the boundaries, and the junction"
+#: the legend's entry for the labelled points (open circles); ``, and the junction`` follows
+#: where the junction is one of them
+SEED_LEGEND = "labelled: the seed points of the boundaries"
 
 CATEGORY_LABELS = {
     "double_rolling_clockwise": "double rolling, clockwise (down the steeper wall)",
@@ -100,12 +101,13 @@ def _seed_label(params: Parameters) -> str:
 
 
 _JUNCTION_LABEL = r"$\upsilon = 0$ on the limit"
+_BRANCH_LABEL = r"$(\arctan\sqrt{2},\,0)$"
 
 
 def _seed_points(params: Parameters) -> dict:
     points = {
         _seed_label(params): (params.gamma_limit, 0.0),
-        r"$(\arctan\sqrt{2},\,0)$": (math.atan(_SQRT2), 0.0),
+        _BRANCH_LABEL: (math.atan(_SQRT2), 0.0),
         r"$(\pi/4,\,\pi/4)$": (0.25 * math.pi, 0.25 * math.pi),
     }
     junction = dr_limit_no_roll_point(params)
@@ -121,7 +123,7 @@ def _drawn_seed_points(params: Parameters) -> dict:
     double-sliding segment read as a point of a boundary."""
     points = _seed_points(params)
     if _JUNCTION_LABEL not in points:
-        del points[r"$(\arctan\sqrt{2},\,0)$"]
+        del points[_BRANCH_LABEL]
     return points
 
 
@@ -135,7 +137,7 @@ def _label_offsets(params: Parameters, points: dict) -> dict:
                                                 junction[1]) < 0.15
     return {
         _seed_label(params): (-45, 30) if k_first else (-18, 28),
-        r"$(\arctan\sqrt{2},\,0)$": (45, 30) if k_first else (-62, 40),
+        _BRANCH_LABEL: (45, 30) if k_first else (-62, 40),
         r"$(\pi/4,\,\pi/4)$": (-82, 10),
         _JUNCTION_LABEL: (78, 34) if close else (22, 26),
     }
@@ -325,7 +327,7 @@ def _legend(ax, codes: np.ndarray, boundary_handles: list, params: Parameters,
         labels.append(text)
     # the open circles of _label_seed_points (a new user took them for points of a boundary)
     handles.append(Line2D([], [], marker="o", ms=7, mfc="none", mec="black", mew=1.2, ls=""))
-    labels.append(SEED_LEGEND if junction else SEED_LEGEND.split(", and")[0])
+    labels.append(SEED_LEGEND + (", and the junction" if junction else ""))
     return ax.legend(handles, labels, loc="upper left", fontsize=7, frameon=False,
                      borderaxespad=0.3)
 
