@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import collections
 import concurrent.futures
-import multiprocessing
 import os
 import signal
 import threading
@@ -150,6 +149,8 @@ def _watch_parent() -> None:
     workers were started (forked, spawned, or by a fork server, whose workers' parent process
     outlives the sweep).
     """
+    import multiprocessing  # in a worker only, where the pool has loaded it: 13 ms otherwise
+
     parent = multiprocessing.parent_process()
     if parent is None:  # not started by multiprocessing: nothing to watch
         return
