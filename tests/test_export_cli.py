@@ -276,7 +276,7 @@ def test_plot_refuses_the_same_k_twice(written, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("column, value, message", [
-    ("k", 1e9, "k = 1000000000.0 is outside the range the boundaries are traced for"),
+    ("k", 1e9, "k = 1e+09 is outside the range the boundaries are traced for"),
     ("compliance", 5.0, "compliance ratio c = 5.0 is outside the range the boundaries are traced"),
 ])
 def test_plot_refuses_a_k_or_compliance_outside_the_traced_ranges(column, value, message,

@@ -11,6 +11,7 @@ from groove_model.model.parameters import (
     Parameters,
     check_domain,
     gamma_delta_from_thetas,
+    number_text,
     thetas_from_gamma_delta,
 )
 
@@ -22,6 +23,7 @@ from groove_model.model.parameters import (
         (-1.0, ValueError, "friction coefficient k = -1.0 is outside the allowed range"),
         (float("nan"), ValueError, "friction coefficient k = nan is outside the allowed range"),
         (float("inf"), ValueError, "friction coefficient k = inf is outside the allowed range"),
+        (-1e7, ValueError, "friction coefficient k = -1e+07 is outside the allowed range"),
         ("1", TypeError, "friction coefficient k must be a real number, got '1' of type str"),
         (None, TypeError, "friction coefficient k must be a real number, got None"),
     ],
@@ -56,6 +58,16 @@ def test_bad_angles(gamma, delta, message):
     assert str(info.value).startswith(message)
     with pytest.raises(ValueError):
         solve_equilibrium(gamma, delta, 1.0)
+
+
+@pytest.mark.parametrize("value, text", [
+    (1e7, "1e+07"), (12345678.9, "1.23456789e+07"), (-2e11, "-2e+11"), (1e6, "1e+06"),
+    (999999.0, "999999.0"), (0.1 + 0.2, "0.30000000000000004"), (1e-5, "1e-05"),
+    (float("inf"), "inf"), (float("nan"), "nan"), (1e16, "1e+16"),
+])
+def test_number_text_is_short_and_reads_back(value, text):
+    assert number_text(value) == text
+    assert math.isnan(value) or float(text) == value
 
 
 def test_domain_accepts_its_closed_edges():

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .equilibrium import Equilibrium
-from .parameters import check_poisson
+from .parameters import check_poisson, number_text
 
 __all__ = ["DimensionalState", "dimensional_state"]
 
@@ -52,7 +52,8 @@ def _positive(name: str, value, unit: str) -> float:
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be a real number, got {value!r}") from exc
     if not math.isfinite(value) or value <= 0.0:
-        raise ValueError(f"{name} = {value!r} {unit} is outside the allowed range: finite and > 0")
+        raise ValueError(f"{name} = {number_text(value)} {unit} is outside the allowed range: "
+                         "finite and > 0")
     return value
 
 

@@ -30,6 +30,7 @@ __all__ = [
     "check_traced_ratio",
     "gamma_delta_from_thetas",
     "k_text",
+    "number_text",
     "thetas_from_gamma_delta",
     "traced_parameters",
 ]
@@ -71,7 +72,7 @@ def check_friction(k: object) -> float:
     value = _check_real("friction coefficient k", k)
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError(
-            f"friction coefficient k = {value!r} is outside the allowed range: "
+            f"friction coefficient k = {number_text(value)} is outside the allowed range: "
             "k must be finite and > 0"
         )
     return value
@@ -114,8 +115,8 @@ def _in_traced_range(name: str, value: float, bounds: tuple, allowed: str) -> fl
     """``value`` if within ``bounds`` (with :data:`_RANGE_SLACK`), else ``ValueError``."""
     low, high = bounds
     if not low * (1.0 - _RANGE_SLACK) <= value <= high * (1.0 + _RANGE_SLACK):
-        raise ValueError(f"{name} = {value!r} is outside the range the boundaries are traced "
-                         f"for: {allowed}")
+        raise ValueError(f"{name} = {number_text(value)} is outside the range the boundaries "
+                         f"are traced for: {allowed}")
     return value
 
 
@@ -186,6 +187,22 @@ def k_text(k: float) -> str:
     """
     text = repr(float(k))
     return text[:-2] if text.endswith(".0") else text
+
+
+def number_text(value: float) -> str:
+    """``value`` for a message: its ``repr``, but in powers of ten from ``1e6`` on.
+
+    ``repr`` reads back as the same float but writes ``1e7`` as ``10000000.0``; here it is
+    ``1e+07``, and ``12345678.9`` is ``1.23456789e+07`` (the fewest digits that read back).
+    """
+    text = repr(float(value))
+    if "e" in text or "n" in text or abs(value) < 1e6:
+        return text
+    for digits in range(17):
+        short = f"{value:.{digits}e}"
+        if float(short) == value:
+            return short
+    return text
 
 
 @dataclass(frozen=True)

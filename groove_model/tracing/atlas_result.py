@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..model.parameters import number_text
 from .curves import PointKind
 from .families import Axis, BoundaryFamily
 
@@ -143,12 +144,13 @@ class AtlasCurve:
         lo, hi = (self.axis.value(end) for end in self.p_range)
         allowed = f"{float(lo):.15g} <= {name} <= {float(hi):.15g}, the range of the atlas"
         if not math.isfinite(value) or (name == "k" and value <= 0.0):
-            raise ValueError(f"{name} = {value!r} is outside the allowed range: {allowed}")
+            raise ValueError(f"{name} = {number_text(value)} is outside the allowed range: "
+                             f"{allowed}")
         p = self.axis.to_p(value)
         slack = 1e-12 * (1.0 + abs(p))
         if not self.p_range[0] - slack <= p <= self.p_range[1] + slack:
-            raise ValueError(f"{name} = {value!r} is outside the allowed range: {allowed} (trace "
-                             f"an atlas over a range that holds it)")
+            raise ValueError(f"{name} = {number_text(value)} is outside the allowed range: "
+                             f"{allowed} (trace an atlas over a range that holds it)")
         return p
 
     def physical_at(self, value: float) -> list[np.ndarray]:
