@@ -115,3 +115,13 @@ def test_the_counted_program_runs(tmp_path):
         done = subprocess.run([sys.executable, "-c", instructions.child_code(1), what],
                               cwd=tmp_path, capture_output=True, text=True)
         assert done.returncode == 0, done.stderr
+
+
+def test_the_floor_steps_stay_on_the_curve(monkeypatch, capsys):
+    """benchmarks/floor.py times steps that land on dr_limit (it asserts so), for both k."""
+    from benchmarks import floor
+    monkeypatch.setattr(floor, "REPEATS", 1)
+    floor.main()
+    rows = capsys.readouterr().out.splitlines()
+    assert [row.split(" | ")[0] for row in rows[2:]] == ["| 1", "| 10"]
+    assert all("evaluations" in row and "points" in row for row in rows[2:])
