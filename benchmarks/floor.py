@@ -12,6 +12,12 @@ same model, to say whether any serial pure-Python engine can get there:
   no domain, no residual check beyond an assertion at the end;
 * ``numpy``: the bordered 4 x 4 system by ``numpy.linalg.solve``;
 * ``floats``: the same with Python lists and Gaussian elimination with partial pivoting;
+* ``batched``: the ``numpy`` step on ``LANES`` curves at once, as a sweep batched over ``k``
+  would step them: the residuals and Jacobians of all lanes in one evaluation over arrays
+  (``BoundarySystem.residuals_and_jacobians``), the bordered systems by one stacked
+  ``numpy.linalg.solve``; a fixed 3 Newton iterations, no convergence test. The lanes here are
+  one ``k`` with ``LANES`` arclength steps from ``ds/2`` to ``ds`` (the model's formulas are
+  elementwise, so ``k`` as an array costs the same); the time is per lane and step;
 * ``ours``: ``trace_boundaries(k)`` (all four boundaries with every check and special point)
   per point of the engine's curves.
 
@@ -29,7 +35,7 @@ from groove_model import trace_boundaries
 from groove_model.model.boundaries import BoundarySystem, limit_seed
 from groove_model.model.parameters import Parameters
 
-STEPS, DS, REPEATS = 20, 0.05, 7
+STEPS, DS, REPEATS, LANES = 20, 0.05, 7, 1000
 
 
 def _solve_lists(A: list, b: list) -> list:
@@ -90,6 +96,23 @@ def steps_floats(system, x, t):
     return np.array(x), evaluations
 
 
+def steps_batched(system, x, t):
+    ds = np.linspace(0.5 * DS, DS, LANES)
+    X, T = np.tile(x, (LANES, 1)), np.tile(t, (LANES, 1))
+    last = np.broadcast_to(np.array([0.0, 0.0, 0.0, 1.0])[:, None], (LANES, 4, 1))
+    for _ in range(STEPS):
+        Y = X + ds[:, None] * T
+        for _ in range(3):
+            H, J = system.residuals_and_jacobians(Y)
+            A = np.concatenate([J, T[:, None, :]], axis=1)
+            arc = np.einsum("ij,ij->i", T, Y - X) - ds
+            Y = Y - np.linalg.solve(A, np.concatenate([H, arc[:, None]], axis=1)[:, :, None])[
+                :, :, 0]
+        T = np.linalg.solve(A, last)[:, :, 0]
+        X, T = Y, T / np.linalg.norm(T, axis=1)[:, None]
+    return X, 3 * LANES * STEPS
+
+
 def _best(f) -> float:
     times = []
     for _ in range(REPEATS):
@@ -100,8 +123,9 @@ def _best(f) -> float:
 
 
 def main() -> None:
-    print("| k | numpy step | floats step | ours per point (all checks) | ours per k |")
-    print("|---:|---:|---:|---:|---:|")
+    print(f"| k | numpy step | floats step | batched step ({LANES} lanes) "
+          "| ours per point (all checks) | ours per k |")
+    print("|---:|---:|---:|---:|---:|---:|")
     for k in (1.0, 10.0):
         params = Parameters(k)
         system = BoundarySystem("dr_limit", params)
@@ -109,11 +133,14 @@ def main() -> None:
         t0 = np.linalg.svd(system.residual_and_jacobian(x0)[1])[2][-1]
         t0 = -t0 if t0[0] > 0 else t0          # into the domain: gamma decreasing
         row = [f"{k:g}"]
-        for steps in (steps_numpy, steps_floats):
+        for steps, lanes in ((steps_numpy, 1), (steps_floats, 1), (steps_batched, LANES)):
             x, evaluations = steps(system, x0, t0)
-            assert np.max(np.abs(system.residual(x))) < 1e-10 and 0.0 <= x[1] <= x[0], x
-            seconds = _best(lambda f=steps, s=system, x=x0, t=t0: f(s, x, t))
-            row.append(f"{seconds / STEPS * 1e6:.0f} us ({evaluations / STEPS:.1f} evaluations)")
+            xs = np.reshape(x, (-1, 4))
+            assert np.max(np.abs(system.residuals(xs))) < 1e-10, steps
+            assert np.all((0.0 <= xs[:, 1]) & (xs[:, 1] <= xs[:, 0])), steps
+            seconds = _best(lambda f=steps, s=system, x=x0, t=t0: f(s, x, t)) / (STEPS * lanes)
+            row.append(f"{seconds * 1e6:.{0 if lanes == 1 else 1}f} us "
+                       f"({evaluations / (STEPS * lanes):.1f} evaluations)")
         result = trace_boundaries(k)
         points = sum(len(c.x) - 1 for curve in result.curves.values() for c in curve.engine)
         seconds = _best(lambda k=k: trace_boundaries(k))

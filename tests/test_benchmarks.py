@@ -118,9 +118,10 @@ def test_the_counted_program_runs(tmp_path):
 
 
 def test_the_floor_steps_stay_on_the_curve(monkeypatch, capsys):
-    """benchmarks/floor.py times steps that land on dr_limit (it asserts so), for both k."""
+    """benchmarks/floor.py times steps that land on dr_limit, every lane (it asserts so)."""
     from benchmarks import floor
     monkeypatch.setattr(floor, "REPEATS", 1)
+    monkeypatch.setattr(floor, "LANES", 50)
     floor.main()
     rows = capsys.readouterr().out.splitlines()
     assert [row.split(" | ")[0] for row in rows[2:]] == ["| 1", "| 10"]
