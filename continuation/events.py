@@ -163,12 +163,13 @@ def box_events(
 
 @dataclass(frozen=True)
 class _Offset:
-    """``x[index] - value`` (a picklable event function)."""
+    """``x[index] - value`` (a picklable event function; over any numbers, so that
+    :func:`continuation.certify` can prove its zeros too)."""
 
     index: int
     value: float
 
-    def __call__(self, x: np.ndarray) -> float:
+    def __call__(self, x: np.ndarray, numbers=None) -> float:
         return x[self.index] - self.value
 
     def gradient(self, x: np.ndarray) -> np.ndarray:

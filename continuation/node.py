@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .errors import CallbackError
+from .errors import CallbackError, CallbackShapeError
 from .events import Event
 from .linalg import all_finite, factor_bordered, lu_determinant, lu_solve, max_abs
 from .problem import Evaluator
@@ -95,12 +95,26 @@ class Node:
 
 
 def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], str]) -> float:
-    """``event.function(x)`` as a float; a raised exception becomes a :class:`CallbackError`."""
+    """``event.function(x)`` as a float; a raised exception becomes a :class:`CallbackError`,
+    a value that is not one real number a :class:`CallbackShapeError`."""
     try:
-        return float(event.function(x))
+        value = event.function(x)
     except Exception as exc:
         raise CallbackError(f"event '{event.name}' raised {type(exc).__name__}: {exc} at "
                             f"x={describe(x)}") from exc
+    if isinstance(value, (float, int)):
+        return float(value)
+    array = np.asarray(value)
+    if array.shape != () or array.dtype.kind not in "fiub":
+        if array.shape != () and array.dtype.kind in "fiubc":
+            what = f"an array of shape {array.shape}"
+        elif array.dtype.kind == "c":
+            what = f"the complex number {complex(array)}"
+        else:
+            what = "None" if value is None else f"{value!r} (a {type(value).__name__})"
+        raise CallbackShapeError(f"event '{event.name}' returned {what} at x={describe(x)}: "
+                                 "an event must return one real number")
+    return float(array)
 
 
 def bend(evaluator: Evaluator, node: Node, length: float) -> tuple[np.ndarray, np.ndarray, float]:

@@ -87,6 +87,14 @@ class Options:
         max|x0|)`` of the start, or within twice the points' accuracy ``tol (1 + max|x0|)``
         at a loose ``tol``; a curve that comes back closer than that without closing (a helix
         of a smaller pitch) is taken as closed.
+    check_jacobian : bool
+        At the start, compare the problem's Jacobian with central differences of its
+        residual along one direction (2 residuals, 4 if they disagree;
+        :func:`continuation.problem.probe_jacobian`); a Jacobian that is not the residual's
+        derivative ends the run with ``Status.JACOBIAN_MISMATCH`` before it traces (a wrong
+        Jacobian still lets Newton converge onto the curve, but tilts the tangents, and so
+        the folds and branch points, and collapses the steps). Turn it off for a residual
+        that is not differentiable at the start.
     raise_on_failure : bool
         Raise :class:`continuation.ContinuationError` (carrying the partial
         curve) when the run ends with a failure status.
@@ -121,6 +129,7 @@ class Options:
     fold_coordinates: tuple[int, ...] = ()
     detect_branch_points: bool = True
     detect_closed: bool = True
+    check_jacobian: bool = True
     raise_on_failure: bool = False
 
     @cached_property
@@ -176,7 +185,8 @@ class Options:
                 f"{self.fold_coordinates!r}"
             )
         object.__setattr__(self, "fold_coordinates", tuple(int(i) for i in folds))
-        for name in ("detect_branch_points", "detect_closed", "raise_on_failure"):
+        for name in ("detect_branch_points", "detect_closed", "check_jacobian",
+                     "raise_on_failure"):
             if not isinstance(getattr(self, name), bool):
                 raise TypeError(
                     f"Options.{name} must be True or False, got {getattr(self, name)!r}"

@@ -14,7 +14,8 @@ import numpy as np
 
 from .errors import CallbackError, CallbackShapeError
 
-__all__ = ["Evaluator", "Problem", "as_vector", "check_jacobian", "finite_difference_jacobian"]
+__all__ = ["Evaluator", "Problem", "as_vector", "check_jacobian", "finite_difference_jacobian",
+           "probe_jacobian"]
 
 logger = logging.getLogger(__name__)
 
@@ -221,6 +222,55 @@ def check_jacobian(
             raise ValueError(message)
         logger.warning(message)
     return float(np.max(error)) if error.size else 0.0
+
+
+#: the step of :func:`probe_jacobian`, about the cube root of the float epsilon
+PROBE_STEP = 2.0 ** -17
+#: relative disagreement (in a row, against ``|J| |d|``) that :func:`probe_jacobian` reports
+PROBE_RTOL = 1e-4
+
+
+def probe_jacobian(evaluator: Evaluator, x: np.ndarray, J: np.ndarray) -> str | None:
+    r"""Whether ``J`` is the derivative of the residual at ``x``, from 2 to 4 residuals.
+
+    Along one fixed direction ``d`` (``d_j = h (1 + |x_j|) v_j``, ``h = 2^-17``, ``v`` a fixed
+    pattern of signs and sizes that no coordinate direction or tangent is likely to cancel),
+    ``J d`` is compared with the central difference ``D(d) = (H(x + d) - H(x - d)) / 2``,
+    row by row. A row disagrees when ``|J d - D(d)|_i > PROBE_RTOL (|J| |d|)_i``; the
+    difference over ``2 d`` then tells the error of ``J`` from the differences' own
+    (truncation ``O(h^3)``, rounding): ``J`` is reported only if the disagreement exceeds ten
+    times ``|D(d) - D(2 d)|_i``. A wrong entry of ``J`` is found unless its error cancels
+    along ``d``; an approximate ``J`` (finite differences, ``1e-8`` relative) passes.
+
+    Returns
+    -------
+    str or None
+        ``None`` if ``J`` agrees, or if the check cannot tell (a residual that is not finite
+        next to ``x``); else what disagrees, for a message.
+    """
+    n1 = x.size
+    v = np.array([(0.5 + (0.6180339887498949 * (j + 1)) % 1.0) * (-1.0) ** j
+                  for j in range(n1)])
+    d = PROBE_STEP * (1.0 + np.abs(x)) * v
+
+    def difference(step: np.ndarray) -> np.ndarray:
+        return 0.5 * (evaluator.residual(x + step) - evaluator.residual(x - step))
+
+    Jd = J @ d
+    D = difference(d)
+    excess = np.abs(Jd - D) - PROBE_RTOL * (np.abs(J) @ np.abs(d))
+    if not np.all(np.isfinite(D)) or not np.any(excess > 0.0):
+        return None
+    D2 = 0.5 * difference(2.0 * d)
+    trusted = np.abs(Jd - D) > 10.0 * np.abs(D - D2)
+    wrong = np.flatnonzero((excess > 0.0) & trusted & np.isfinite(D2))
+    if wrong.size == 0:
+        return None
+    i = int(wrong[np.argmax(np.abs(Jd - D)[wrong] / (np.abs(J) @ np.abs(d))[wrong])])
+    return (f"row {i} of the Jacobian gives the derivative {Jd[i] / PROBE_STEP:.10g} along "
+            f"d/h = {evaluator.problem.describe(d / PROBE_STEP)}, central differences of the "
+            f"residual give {D[i] / PROBE_STEP:.10g} (over d and 2d: "
+            f"{D2[i] / PROBE_STEP:.10g})")
 
 
 class Evaluator:

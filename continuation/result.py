@@ -61,6 +61,7 @@ class Status(enum.Enum):
     NOT_LOCATED = "a special point was bracketed but could not be located"
     INCONSISTENT = "the special points found disagree with the traced points"
     CALLBACK_FAILED = "a residual, Jacobian or event function raised or returned a wrong shape"
+    JACOBIAN_MISMATCH = "the Jacobian disagrees with differences of the residual"
 
     @property
     def failed(self) -> bool:
@@ -70,7 +71,8 @@ class Status(enum.Enum):
 
 _FAILURES = frozenset({Status.STEP_TOO_SMALL, Status.START_NOT_CONVERGED,
                        Status.SINGULAR_START, Status.NON_FINITE, Status.EVENT_NOT_FINITE,
-                       Status.NOT_LOCATED, Status.INCONSISTENT, Status.CALLBACK_FAILED})
+                       Status.NOT_LOCATED, Status.INCONSISTENT, Status.CALLBACK_FAILED,
+                       Status.JACOBIAN_MISMATCH})
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,7 +239,7 @@ class Curve:
         """
         self._require_problem()
         if not (self.s.size and self.s[0] <= s <= self.s[-1]):
-            span = f"[{self.s[0]!r}, {self.s[-1]!r}]" if self.s.size else "empty"
+            span = f"[{float(self.s[0])!r}, {float(self.s[-1])!r}]" if self.s.size else "empty"
             raise ValueError(f"s must lie in the curve's arclength range {span}, got {s!r}")
         i = int(np.searchsorted(self.s, s, side="right")) - 1
         if self.s[i] == s:

@@ -20,7 +20,7 @@ from .events import Event
 from .node import EventNotFinite, LocateError, Node, StepUnresolved
 from .options import Options
 from .predictor import arc_length, extrapolate, hermite
-from .problem import Evaluator, Problem, as_vector
+from .problem import Evaluator, Problem, as_vector, probe_jacobian
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .run import Run
 from .special import add_step, drop_unresolved_folds, fold_inconsistency, scan_step
@@ -41,6 +41,9 @@ PREDICTOR_NODES = 3
 #: rejected (the tolerances, relative to ``1 + max|x|``, are too loose for the curve's scale)
 UNRESOLVED = 0.1
 _UNRESOLVED_REASON = "the corrected point meets the tolerances"
+
+#: a run that reaches max_steps with its step below this fraction of ds_max says so
+CREEPING = 1e-6
 
 
 def trace(
@@ -258,12 +261,21 @@ class _Stepper:
         self.steps = 0
         self.status: Status | None = None
         self.message = ""
+        # (s, h) of the last step rejected for non-finite values: the steps that shrink
+        # towards the edge of the residual's domain end in other rejections
+        self.non_finite: tuple[float, float] | None = None
 
     def check_terminated(self) -> bool:
         """Whether the run has ended; the last checks, of the folds, once it has."""
         if self.status is None and self.steps >= self.run.options.max_steps:
             self.status = Status.MAX_STEPS
             self.message = f"{Status.MAX_STEPS.value} ({self.steps})"
+            if self.ds < CREEPING * self.run.options.ds_max:
+                self.message += (
+                    f"; the step size had fallen to {self.ds:.3g} (ds_max="
+                    f"{self.run.options.ds_max:.3g}): the curve may be singular or turn "
+                    "sharply there, or the Jacobian may be wrong (continuation.check_jacobian); "
+                    "the rejections are logged at DEBUG level by 'continuation.tracker'")
         if self.status is None:
             return False
         drop_unresolved_folds(self.run)
@@ -355,14 +367,18 @@ class _Stepper:
         logger.debug("step %d rejected at s=%.6g with ds=%.3g: %s", self.steps + 1,
                      self.point.s, h, reason)
         self.ds = 0.5 * h
+        if reason == NON_FINITE:
+            self.non_finite = (self.point.s, h)
         if self.ds < self.run.options.ds_min:
             if failure is Status.NOT_LOCATED:
                 self.status, self.message = failure, (
                     f"{failure.value}: {reason}; even with the step size {h:.3g} "
                     f"(ds_min={self.run.options.ds_min:.3g}); the curve ends before it")
             else:
+                edge = self.non_finite is not None \
+                    and self.point.s - self.non_finite[0] <= self.non_finite[1]
                 self.status, self.message = _step_failure(self.run, self.point, self.steps,
-                                                          reason, self.ds)
+                                                          reason, self.ds, edge)
 
     def _end(self, terminal: SpecialPoint | None, closing, truncated: bool, new: Node) -> None:
         """The status if the accepted step ended the run."""
@@ -396,6 +412,13 @@ def _start(run: Run, x0: np.ndarray, direction, tangent, at_branch_point=False):
         raise ValueError(f"jacobian(x0) has shape {J.shape}, expected ({n1 - 1}, {n1})")
     if not np.isfinite(J).all():
         return None, Status.NON_FINITE, f"the Jacobian is not finite at the start {where}"
+    if options.check_jacobian and problem.jacobian is not None:
+        mismatch = probe_jacobian(evaluator, x0, J)
+        if mismatch is not None:
+            return None, Status.JACOBIAN_MISMATCH, (
+                f"{Status.JACOBIAN_MISMATCH.value} at the start {where}: {mismatch}. Check "
+                "the Jacobian with continuation.check_jacobian(problem, None, x0); if the "
+                "residual is not smooth there, pass Options(check_jacobian=False)")
     reference, sign = _orientation(direction, n1)
     if tangent is None:
         singular_values, basis = _svd(J)
@@ -502,15 +525,19 @@ def _step_multiplier(correction, alpha: float, order: int, options: Options) -> 
     return 2.0 if f <= 0.5 else max(0.5, 1.0 / f)
 
 
-def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float):
-    """Status and message when the step falls below ``ds_min``."""
+def _step_failure(run: Run, point: Node, steps: int, reason: str, ds: float,
+                  edge: bool = False):
+    """Status and message when the step falls below ``ds_min``; ``edge``: a step from
+    within its length of ``point`` met non-finite values (the steps shrank towards the edge
+    of the residual's domain, and the last ones may have failed otherwise)."""
     where = (f"after step {steps} at s={point.s:.12g}, x={run.problem.describe(point.x)} "
              f"(step size {ds:.3g} < ds_min={run.options.ds_min:.3g})")
-    if reason == NON_FINITE:
+    if reason == NON_FINITE or edge:
+        last = "" if reason == NON_FINITE else f" (the last, shortest steps failed: {reason})"
         return Status.NON_FINITE, (
             f"the residual or Jacobian is not finite ahead of the curve {where}: the curve "
             "leaves the residual's domain; stop it before with box_events or an Event, or "
-            "extend the residual")
+            f"extend the residual{last}")
     if reason.startswith(_UNRESOLVED_REASON):
         advice = ("Either the curve is smaller than the tolerances resolve near this point "
                   "(tighten Options.tol, or shift and scale the problem so that the curve's "

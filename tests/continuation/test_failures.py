@@ -140,3 +140,79 @@ def test_argument_validation(circle):
         trace(circle, [1.0, 0.0], options=Options(fold_coordinates=(5,)))
     with pytest.raises(ValueError, match="direction is orthogonal"):
         trace(circle, [1.0, 0.0], direction=[1.0, 0.0])
+
+
+def cubic_with(d_dy):
+    """x[1]^3 - 3 x[1] - x[0] = 0 with the Jacobian's second entry ``d_dy(x[1])``."""
+    return Problem(lambda x: np.array([x[1] ** 3 - 3.0 * x[1] - x[0]]),
+                   lambda x: np.array([[-1.0, d_dy(x[1])]]))
+
+
+def test_a_wrong_jacobian_ends_the_run_at_the_start():
+    # 3 y^2 - 2.9 instead of 3 y^2 - 3: Newton still converges onto the curve, the tangents
+    # and the folds tilt, and the steps collapse to 1e-8 (10000 steps, no fold found)
+    curve = trace(cubic_with(lambda y: 3.0 * y ** 2 - 2.9), [-18.0, -3.0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0,)))
+    assert curve.status is Status.JACOBIAN_MISMATCH and not curve.ok and len(curve) == 0
+    assert "row 0 of the Jacobian" in curve.message and "check_jacobian" in curve.message
+    assert curve.residual_evals == 5      # x0, then 2 + 2 for the check
+    with pytest.raises(ContinuationError, match="disagrees with differences"):
+        trace(cubic_with(lambda y: 3.0 * y ** 2 - 2.9), [-18.0, -3.0],
+              options=Options(raise_on_failure=True))
+
+
+def test_the_jacobian_check_passes_good_and_approximate_jacobians_and_can_be_off():
+    right = trace(cubic_with(lambda y: 3.0 * y ** 2 - 3.0), [-18.0, -3.0],
+                  direction=[1.0, 0.0], options=Options(fold_coordinates=(0,), max_steps=300))
+    assert right.ok and [p.kind for p in right.special_points].count("fold") == 2
+    # off by 1e-7 relative, as a finite-difference Jacobian is: not reported
+    near = trace(cubic_with(lambda y: (3.0 * y ** 2 - 3.0) * (1.0 + 1e-7)), [-18.0, -3.0],
+                 options=Options(max_steps=5))
+    assert near.status is Status.MAX_STEPS
+    # next to the singularity of sqrt, where the differences' truncation error exceeds
+    # PROBE_RTOL, the differences over 2 d tell it: not reported
+    steep = Problem(lambda x: np.array([np.sqrt(x[0]) - x[1]]),
+                    lambda x: np.array([[0.5 / np.sqrt(x[0]), -1.0]]))
+    assert trace(steep, [1e-4, 1e-2], direction=[1.0, 0.0],
+                 options=Options(max_steps=5)).status is Status.MAX_STEPS
+    off = trace(cubic_with(lambda y: 3.0 * y ** 2 - 2.9), [-18.0, -3.0],
+                options=Options(check_jacobian=False, max_steps=5))
+    assert off.status is Status.MAX_STEPS
+
+
+def test_steps_that_shrink_towards_a_domain_edge_end_as_non_finite():
+    # the unit circle with a residual that is NaN for x[0] < -1/2: the steps shrink towards
+    # the edge until the last ones fail for another reason (their Newton correction is not
+    # resolved at a step of 1e-12); the run still says why it stopped
+    def residual(x):
+        return np.array([x[0] ** 2 + x[1] ** 2 - 1.0 + 0.0 * np.sqrt(x[0] + 0.5)])
+
+    with np.errstate(invalid="ignore"):
+        curve = trace(Problem(residual, lambda x: np.array([[2.0 * x[0], 2.0 * x[1]]])),
+                      [1.0, 0.0])
+    assert curve.status is Status.NON_FINITE
+    assert "not finite ahead of the curve" in curve.message
+    assert curve.x[-1] == pytest.approx([-0.5, np.sqrt(0.75)], abs=1e-9)
+
+
+def test_max_steps_says_when_the_steps_had_collapsed():
+    curve = trace(cubic_with(lambda y: 3.0 * y ** 2 - 2.9), [-18.0, -3.0], direction=[1.0, 0.0],
+                  options=Options(check_jacobian=False, max_steps=2000))
+    assert curve.status is Status.MAX_STEPS and curve.ok
+    assert "the step size had fallen to" in curve.message
+    assert "check_jacobian" in curve.message
+    normal = trace(cubic_with(lambda y: 3.0 * y ** 2 - 3.0), [-18.0, -3.0],
+                   options=Options(max_steps=20))
+    assert normal.message == "reached the maximum number of steps (20)"
+
+
+@pytest.mark.parametrize("value, said", [
+    (lambda x: np.array([x[0]]), r"returned an array of shape \(1,\)"),
+    (lambda x: None, "returned None"),
+    (lambda x: np.complex128(x[0]), r"returned the complex number \(-18\+0j\)"),
+    (lambda x: "0", r"returned '0' \(a str\)"),
+])
+def test_an_event_that_returns_no_real_number_is_a_shape_error(value, said):
+    from continuation import CallbackShapeError, Event  # (only this test's)
+    with pytest.raises(CallbackShapeError, match=f"event 'e' {said} at x=.*one real number"):
+        trace(cubic_with(lambda y: 3.0 * y ** 2 - 3.0), [-18.0, -3.0], events=[Event("e", value)])
