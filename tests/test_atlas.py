@@ -246,6 +246,7 @@ def test_no_atlas_point_leaves_the_domain_by_rounding(atlas):
 
 @pytest.mark.parametrize("call, message", [
     (lambda: trace_atlas((1e-6, 1e8)), "k = 1e-06 is outside the range the boundaries"),
+    (lambda: trace_atlas((0.0, 10.0)), r"k = 0.0 is outside the range .* 1e-4 <= k <= 1e6"),
     (lambda: trace_atlas((1e5, 1e7)), "k = 1e\\+07 is outside the range"),
     (lambda: trace_atlas((1.0, 10.0), compliance=0.3), "compliance ratio c = 0.3 is outside"),
     (lambda: trace_atlas_in_poisson(1e7), "k = 1e\\+07 is outside the range"),

@@ -202,7 +202,7 @@ def test_trace_boundaries_refuses_k_outside_the_verified_range():
             trace_boundaries(bad)
     with pytest.raises(ValueError, match=r"k = 0.0 is outside .* 1e-4 <= k <= 1e6"):
         trace_many([1.0, 0.0])
-    with pytest.raises(TypeError, match="must be a real number when a compliance is given"):
+    with pytest.raises(TypeError, match="ks must be friction coefficients .* as compliance="):
         trace_many([Parameters(1.0, Compliance(0.8))])  # its compliance would be dropped
 
 

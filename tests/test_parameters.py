@@ -43,9 +43,9 @@ def test_bad_friction(k, error, message):
         # the bound's value is named (it read "0 <= delta <= gamma" alone)
         (0.5, -0.1, "delta = -0.1 rad is outside the allowed range 0 <= delta <= gamma "
                     "(gamma = 0.5 rad)"),
-        (0.5, float("inf"), "delta = inf rad is outside the allowed range finite, "
+        (0.5, float("inf"), "delta = inf is not a finite number; allowed range: "
                             "0 <= delta <= gamma (gamma = 0.5 rad)"),
-        (float("nan"), 0.1, "gamma = nan rad is outside the allowed range finite"),
+        (float("nan"), 0.1, "gamma = nan is not a finite number; allowed range: 0 <= gamma"),
         ([0.1, 0.5], [0.0, 0.7], "delta = 0.7 rad is outside the allowed range"),
         # tiny angles have only the relative slack: delta five times gamma is outside
         (1e-301, 5e-301, "delta = 5e-301 rad is outside the allowed range 0 <= delta <= gamma"),

@@ -191,3 +191,32 @@ def test_s_is_the_arclength_of_the_rows_as_written(k):
     for curve in trace_boundaries(k, keep_unphysical=True).curves.values():
         chords = np.linalg.norm(np.diff(curve.x, axis=0), axis=1)
         assert np.all(np.diff(curve.s) >= chords - 4.0 * np.finfo(float).eps * curve.s[1:])
+
+
+def test_options_of_the_user_keep_the_tracers_own_switches():
+    # Options(ds_max=0.1) has fold_coordinates=(): given whole to the engine, it turned the
+    # folds off and every boundary failed its topology check
+    from continuation import Options  # (only this test's)
+    from groove_model.tracing import TraceError  # (only this test's)
+    result = trace_boundaries(2.0, options=Options(ds_max=0.1))
+    assert result.ok, result.failures
+    assert {p.kind for c in result.curves.values() for p in c.special_points} >= {"fold_delta"}
+    default = trace_boundaries(2.0)
+    assert sum(len(c.x) for c in result.curves.values()) \
+        < sum(len(c.x) for c in default.curves.values())      # longer steps: fewer points
+    with pytest.raises(TraceError):
+        trace_boundaries(2.0, options=Options(max_steps=3, raise_on_failure=True))
+    with pytest.raises(TypeError, match="options must be a continuation.Options"):
+        trace_boundaries(2.0, options={"ds_max": 0.1})
+
+
+def test_the_compliance_can_be_given_to_trace_boundaries_as_to_trace_many():
+    ratio = trace_boundaries(1.0, compliance=0.8)
+    whole = trace_boundaries(Parameters(1.0, Compliance(0.8)))
+    assert ratio.ok and ratio.params == whole.params
+    assert ratio.to_frame().equals(whole.to_frame())
+    assert trace_boundaries(np.array(1.0)).params.k == 1.0     # a 0-d array is a number
+    with pytest.raises(TypeError, match="give the compliance once"):
+        trace_boundaries(Parameters(1.0), compliance=0.8)
+    with pytest.raises(ValueError, match="compliance ratio c = 0.5 is outside the range"):
+        trace_boundaries(1.0, compliance=0.5)

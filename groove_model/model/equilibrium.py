@@ -488,8 +488,8 @@ def solve_equilibrium(gamma, delta, k) -> Equilibrium:
     failed = np.isnan(dr["beta_L"]) & (gamma < HALF_PI)
     if np.any(failed):
         i = np.flatnonzero(failed)[0]
-        raise RuntimeError(f"double-rolling root not found at gamma = {gamma[i]!r} rad, "
-                           f"delta = {delta[i]!r} rad, although it is bracketed there")
+        raise RuntimeError(f"double-rolling root not found at gamma = {float(gamma[i])!r} rad, "
+                           f"delta = {float(delta[i])!r} rad, although it is bracketed there")
     # gamma = pi/2 (the float) is the closed groove, T/N = c tan gamma = inf > k for every k,
     # also where arctan(k/c) rounds to pi/2 (k/c >= 1e16)
     sliding_both = (delta == 0.0) & ((gamma > params.gamma_limit) | (gamma >= HALF_PI))

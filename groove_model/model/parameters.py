@@ -32,6 +32,7 @@ __all__ = [
     "k_text",
     "number_text",
     "thetas_from_gamma_delta",
+    "traced_compliance",
     "traced_parameters",
 ]
 
@@ -39,6 +40,8 @@ HALF_PI = 0.5 * math.pi
 
 
 def _check_real(name: str, value: object) -> float:
+    if isinstance(value, np.ndarray) and value.shape == () and value.dtype.kind in "fiu":
+        value = value.item()  # a 0-d array, as numpy's reductions return them
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"{name} must be a real number, got {value!r} of type "
                         f"{type(value).__name__}")
@@ -142,11 +145,12 @@ def check_traced_poisson(nu: float) -> float:
     return nu
 
 
-def traced_parameters(k_or_params, compliance: Compliance | None = None) -> Parameters:
+def traced_parameters(k_or_params, compliance: Compliance | float | None = None) -> Parameters:
     """:class:`Parameters` for tracing, checked against the traced ranges (:func:`check_traced`).
 
     ``k_or_params`` is a :class:`Parameters` (then no ``compliance``: it has its own) or a
-    friction coefficient (with ``compliance``, default the paper's); a ``k`` that is not finite
+    friction coefficient (with ``compliance``, a :class:`Compliance` or its ratio ``c``, default
+    the paper's ``c = 1``); a ``k`` that is not finite
     or not positive gets the message of the traced range ``1e-4 <= k <= 1e6``, not only
     "finite and > 0".
 
@@ -159,14 +163,25 @@ def traced_parameters(k_or_params, compliance: Compliance | None = None) -> Para
     """
     if isinstance(k_or_params, Parameters):
         if compliance is not None:
-            raise TypeError(f"friction coefficient k must be a real number when a compliance is "
-                            f"given, got {k_or_params!r}")
+            raise TypeError(f"give the compliance once: in the Parameters or as compliance=, "
+                            f"not both (got {k_or_params!r} and compliance={compliance!r})")
         params = k_or_params
     else:
         check_traced_friction(_check_real("friction coefficient k", k_or_params))
-        params = Parameters(k_or_params, compliance if compliance is not None else Compliance())
+        params = Parameters(k_or_params, traced_compliance(compliance))
     check_traced(params)
     return params
+
+
+def traced_compliance(compliance: Compliance | float | None) -> Compliance:
+    """``compliance`` (a :class:`Compliance`, its ratio ``c``, or ``None`` for the paper's
+    ``c = 1``) as a :class:`Compliance`, its ratio checked against the traced range."""
+    if compliance is None:
+        return Compliance()
+    if not isinstance(compliance, Compliance):
+        compliance = Compliance(_check_real("compliance ratio c", compliance))
+    check_traced_ratio(compliance.ratio)
+    return compliance
 
 
 def check_traced(params: Parameters) -> None:
@@ -363,10 +378,10 @@ def check_domain(gamma, delta):
     slack = 4.0 * np.finfo(float).eps
     bad_delta = delta_a > gamma_a * (1.0 + slack) + 4.0 * _SMALLEST_SUBNORMAL
     checks = (
-        (~np.isfinite(gamma_a), "gamma", "finite, 0 <= gamma <= pi/2 = 1.5707963..."),
+        (~np.isfinite(gamma_a), "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
         (gamma_a > HALF_PI * (1.0 + slack), "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
         (gamma_a < 0.0, "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
-        (~np.isfinite(delta_a), "delta", "finite, 0 <= delta <= gamma"),
+        (~np.isfinite(delta_a), "delta", "0 <= delta <= gamma"),
         (delta_a < 0.0, "delta", "0 <= delta <= gamma"),
         (bad_delta, "delta", "0 <= delta <= gamma"),
     )
@@ -376,5 +391,8 @@ def check_domain(gamma, delta):
             value = float((gamma_a if name == "gamma" else delta_a).flat[i])
             if name == "delta":
                 allowed += f" (gamma = {float(gamma_a.flat[i])!r} rad)"
+            if not math.isfinite(value):
+                raise ValueError(f"{name} = {value!r} is not a finite number; allowed range: "
+                                 f"{allowed}")
             raise ValueError(f"{name} = {value!r} rad is outside the allowed range {allowed}")
     return np.minimum(gamma_a, HALF_PI), np.minimum(delta_a, np.minimum(gamma_a, HALF_PI))

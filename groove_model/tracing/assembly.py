@@ -311,8 +311,9 @@ def assemble(name: str, system: BoundarySystem, curve: Curve, tagged: list[Tagge
     ok = curve.ok
     if ok and np.any(outside[keep]):
         i = int(np.flatnonzero(outside & keep)[0])
-        ok, status = False, (f"row {i} ({x[i][0]!r}, {x[i][1]!r}) is outside the domain "
-                             f"0 <= delta <= gamma <= pi/2 by more than {DOMAIN_TOLERANCE:g}")
+        ok, status = False, (f"row {i} ({float(x[i][0])!r}, {float(x[i][1])!r}) is outside the "
+                             f"domain 0 <= delta <= gamma <= pi/2 by more than "
+                             f"{DOMAIN_TOLERANCE:g}")
     physical_start = start if physical.size and physical[0] else Where.NOWHERE
     if physical.size and not physical[0] and np.any(physical):
         physical_start = Where.REGIME_LIMIT

@@ -26,7 +26,13 @@ from typing import TYPE_CHECKING
 
 from continuation import Options
 
-from ..model.parameters import Compliance, Parameters, check_flag, traced_parameters
+from ..model.parameters import (
+    Compliance,
+    Parameters,
+    check_flag,
+    traced_compliance,
+    traced_parameters,
+)
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
 
@@ -102,12 +108,12 @@ def _check_ks(ks, compliance: Compliance | float | None) -> tuple[list[float], C
     """
     if isinstance(ks, (str, bytes)) or not isinstance(ks, Iterable):
         raise TypeError(f"ks must be an iterable of numbers, got {ks!r}")
-    if compliance is None:
-        compliance = Compliance()
-    elif not isinstance(compliance, Compliance):
-        compliance = Compliance(compliance)  # a ratio, as trace_atlas takes it
+    compliance = traced_compliance(compliance)   # or a ratio, as for the atlas
     values = []
     for k in ks:
+        if isinstance(k, Parameters):
+            raise TypeError(f"ks must be friction coefficients (real numbers), got {k!r}: give "
+                            "the compliance, the same for every k, as compliance=")
         values.append(traced_parameters(k, compliance).k)  # TypeError for str, bool, ...
     return values, compliance
 

@@ -44,6 +44,7 @@ from __future__ import annotations
 
 import logging
 import math
+from dataclasses import replace
 from typing import cast
 
 import numpy as np
@@ -57,7 +58,7 @@ from ..model.boundaries import (
     dr_no_roll_branch_point,
     limit_seed,
 )
-from ..model.parameters import Parameters, check_flag, k_text, traced_parameters
+from ..model.parameters import Compliance, Parameters, check_flag, k_text, traced_parameters
 from .assembly import (
     Role,
     Tagged,
@@ -333,7 +334,20 @@ class _Job:
         return assemble("rs_no_roll", system, engine, tagged, self.keep_unphysical, where, note)
 
 
-def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | None = None,
+def _tracer_options(options: Options | None, raise_on_failure: bool) -> tuple[Options, bool]:
+    """``options`` with the tracer's own switches (:data:`DEFAULT_OPTIONS`'), and whether to
+    raise (``options.raise_on_failure`` asks it too; the engine itself never raises here)."""
+    if options is None:
+        return DEFAULT_OPTIONS, raise_on_failure
+    if not isinstance(options, Options):
+        raise TypeError(f"options must be a continuation.Options, got {type(options).__name__}")
+    kept = replace(options, fold_coordinates=DEFAULT_OPTIONS.fold_coordinates,
+                   detect_branch_points=False, detect_closed=False, raise_on_failure=False)
+    return kept, raise_on_failure or options.raise_on_failure
+
+
+def trace_boundaries(k, *, compliance: Compliance | float | None = None,
+                     keep_unphysical: bool = False, options: Options | None = None,
                      gamma_min: float | None = None, raise_on_failure: bool = False,
                      certify: bool = False) -> BoundarySet:
     """Trace ``dr_limit``, ``rs_limit``, ``dr_no_roll`` and ``rs_no_roll`` for friction ``k``.
@@ -344,6 +358,10 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         Friction coefficient, ``1e-4 <= k <= 1e6``, with a compliance ratio ``2/3 <= c <= 1``
         (Mindlin's for Poisson ratios ``0 <= nu <= 1/2``): the ranges the tracer is verified
         for (:data:`~groove_model.model.parameters.TRACED_K_RANGE`).
+    compliance : Compliance or float, optional
+        With a float ``k``: the contact's compliance, or its ratio ``c`` (default the paper's
+        law, ``c = 1``); ``Compliance.from_poisson(nu)`` for a Poisson ratio. A
+        :class:`Parameters` ``k`` carries its own.
     keep_unphysical : bool
         Keep the parts of each traced curve where its regime is not valid (flagged
         ``physical = False``). Above ``k_branch``, ``rs_no_roll`` is traced from the junction,
@@ -351,8 +369,12 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
         junction is not traced (a note says so).
     options : continuation.Options, optional
         Engine settings; the default (:data:`DEFAULT_OPTIONS`) resolves the curves for plotting
-        with residuals <= 1e-12. Folds are located in the coordinates ``options.fold_coordinates``
-        (0 = gamma, 1 = delta); the topology check expects both.
+        with residuals <= 1e-12 (e.g. ``dataclasses.replace(DEFAULT_OPTIONS, ds_max=0.01)``
+        for finer steps). Three switches are the tracer's and are kept whatever ``options``
+        says, since the topology check depends on them: folds are located in gamma and in
+        delta (``fold_coordinates=(0, 1)``), and the engine neither detects branch points (the
+        tracer locates the junction itself) nor closes curves. ``options.raise_on_failure``
+        acts as ``raise_on_failure``.
     gamma_min : float, optional
         Where ``dr_limit`` and ``rs_limit`` stop on their way to the singular origin; default
         ``min(1e-3, arctan(k/c) / 100)``, the value the tracer is verified with. Another value
@@ -387,13 +409,13 @@ def trace_boundaries(k, *, keep_unphysical: bool = False, options: Options | Non
     The expected topology comes from the atlas of special points; its thresholds are computed
     on the first call for a compliance ratio (about half a second) and kept for later calls.
     """
-    params = traced_parameters(k)
+    params = traced_parameters(k, compliance)
     keep_unphysical = check_flag("keep_unphysical", keep_unphysical)
     raise_on_failure = check_flag("raise_on_failure", raise_on_failure)
     certify = check_flag("certify", certify)
     if certify:
         require_flint()
-    options = options or DEFAULT_OPTIONS
+    options, raise_on_failure = _tracer_options(options, raise_on_failure)
     if gamma_min is None:
         gamma_min = min(GAMMA_MIN, 0.01 * params.gamma_limit)
     if isinstance(gamma_min, bool) or not isinstance(gamma_min, (int, float, np.floating)):
