@@ -96,25 +96,26 @@ class Node:
 
 def event_value(event: Event, x: np.ndarray, describe: Callable[[np.ndarray], str]) -> float:
     """``event.function(x)`` as a float; a raised exception becomes a :class:`CallbackError`,
-    a value that is not one real number a :class:`CallbackShapeError`."""
+    a value that ``float`` refuses (an array, ``None``, a complex number) a
+    :class:`CallbackShapeError`. (numpy's complex scalars ``float`` takes, with numpy's
+    ``ComplexWarning``; checking every value for them would cost the hot path.)"""
     try:
         value = event.function(x)
     except Exception as exc:
         raise CallbackError(f"event '{event.name}' raised {type(exc).__name__}: {exc} at "
                             f"x={describe(x)}") from exc
-    if isinstance(value, (float, int)):
+    try:
         return float(value)
-    array = np.asarray(value)
-    if array.shape != () or array.dtype.kind not in "fiub":
-        if array.shape != () and array.dtype.kind in "fiubc":
-            what = f"an array of shape {array.shape}"
-        elif array.dtype.kind == "c":
-            what = f"the complex number {complex(array)}"
-        else:
-            what = "None" if value is None else f"{value!r} (a {type(value).__name__})"
-        raise CallbackShapeError(f"event '{event.name}' returned {what} at x={describe(x)}: "
-                                 "an event must return one real number")
-    return float(array)
+    except (TypeError, ValueError):
+        pass
+    if isinstance(value, np.ndarray) and value.shape != ():
+        what = f"an array of shape {value.shape}"
+    elif isinstance(value, complex):
+        what = f"the complex number {value}"
+    else:
+        what = "None" if value is None else f"{value!r} (a {type(value).__name__})"
+    raise CallbackShapeError(f"event '{event.name}' returned {what} at x={describe(x)}: an "
+                             "event must return one real number")
 
 
 def bend(evaluator: Evaluator, node: Node, length: float) -> tuple[np.ndarray, np.ndarray, float]:

@@ -89,7 +89,7 @@ class Options:
         of a smaller pitch) is taken as closed.
     check_jacobian : bool
         At the start, compare the problem's Jacobian with central differences of its
-        residual along one direction (2 residuals, 4 if they disagree;
+        residual along one direction (2 residuals, 6 if they disagree;
         :func:`continuation.problem.probe_jacobian`); a Jacobian that is not the residual's
         derivative ends the run with ``Status.JACOBIAN_MISMATCH`` before it traces (a wrong
         Jacobian still lets Newton converge onto the curve, but tilts the tangents, and so

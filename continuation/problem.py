@@ -6,6 +6,7 @@ No coordinate is privileged (Allgower & Georg's formulation): the curve
 
 from __future__ import annotations
 
+import functools
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -228,49 +229,71 @@ def check_jacobian(
 PROBE_STEP = 2.0 ** -17
 #: relative disagreement (in a row, against ``|J| |d|``) that :func:`probe_jacobian` reports
 PROBE_RTOL = 1e-4
+#: the three steps of :func:`probe_jacobian`, as fractions of ``d``
+_PROBE_SCALES = (1.0, 1.0 / 16.0, 1.0 / 256.0)
+
+
+@functools.lru_cache(maxsize=8)
+def _probe_direction(n1: int) -> np.ndarray:
+    """``h v`` of :func:`probe_jacobian`: sizes from the golden-ratio sequence in
+    ``[1/2, 3/2)``, alternating in sign."""
+    v = [(0.5 + (0.6180339887498949 * (j + 1)) % 1.0) * (-1.0) ** j for j in range(n1)]
+    direction = PROBE_STEP * np.array(v)
+    direction.flags.writeable = False
+    return direction
 
 
 def probe_jacobian(evaluator: Evaluator, x: np.ndarray, J: np.ndarray) -> str | None:
-    r"""Whether ``J`` is the derivative of the residual at ``x``, from 2 to 4 residuals.
+    r"""Whether ``J`` is the derivative of the residual at ``x``: 2 residuals, 6 if in doubt.
 
     Along one fixed direction ``d`` (``d_j = h (1 + |x_j|) v_j``, ``h = 2^-17``, ``v`` a fixed
     pattern of signs and sizes that no coordinate direction or tangent is likely to cancel),
-    ``J d`` is compared with the central difference ``D(d) = (H(x + d) - H(x - d)) / 2``,
-    row by row. A row disagrees when ``|J d - D(d)|_i > PROBE_RTOL (|J| |d|)_i``; the
-    difference over ``2 d`` then tells the error of ``J`` from the differences' own
-    (truncation ``O(h^3)``, rounding): ``J`` is reported only if the disagreement exceeds ten
-    times ``|D(d) - D(2 d)|_i``. A wrong entry of ``J`` is found unless its error cancels
-    along ``d``; an approximate ``J`` (finite differences, ``1e-8`` relative) passes.
+    ``J d`` is compared with the central difference ``D = (H(x + d) - H(x - d)) / 2``, row
+    by row. A row disagrees when ``|J d - D|_i`` exceeds ``PROBE_RTOL (|J| |d|)_i`` and the
+    rounding of the difference, ``8 eps (|H(x + d)| + |H(x - d)|)_i``. Where a row does, the
+    same is done over ``d/16`` and ``d/256``: the error of a wrong ``J`` is the same fraction of
+    the step at every scale, while the differences' own error (truncation ``O(h^3)``, a residual
+    that varies on a scale shorter than ``d``) shrinks with the step. ``J`` is reported only
+    if a row disagrees at all three steps, by a fraction of the step at ``d/256`` at least half
+    of that at ``d/16``.
+
+    An approximate ``J`` (finite differences, ``1e-8`` relative) passes. Blind spots: an error
+    whose share of ``|J| |d|`` is below ``PROBE_RTOL`` (a column whose coordinate is ``1e6``
+    times smaller than another's), an error that ``d`` cancels, a residual that is not finite
+    within ``d`` of ``x`` (it cannot tell), and a residual that varies on a scale below
+    ``d/256`` (about ``3e-8 (1 + |x|)``), which can be reported though ``J`` is right.
 
     Returns
     -------
     str or None
-        ``None`` if ``J`` agrees, or if the check cannot tell (a residual that is not finite
-        next to ``x``); else what disagrees, for a message.
+        ``None`` if ``J`` agrees or the check cannot tell; else what disagrees, for a message.
     """
-    n1 = x.size
-    v = np.array([(0.5 + (0.6180339887498949 * (j + 1)) % 1.0) * (-1.0) ** j
-                  for j in range(n1)])
-    d = PROBE_STEP * (1.0 + np.abs(x)) * v
-
-    def difference(step: np.ndarray) -> np.ndarray:
-        return 0.5 * (evaluator.residual(x + step) - evaluator.residual(x - step))
-
-    Jd = J @ d
-    D = difference(d)
-    excess = np.abs(Jd - D) - PROBE_RTOL * (np.abs(J) @ np.abs(d))
-    if not np.all(np.isfinite(D)) or not np.any(excess > 0.0):
+    d = (1.0 + np.abs(x)) * _probe_direction(x.size)
+    errors: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
+    for scale in _PROBE_SCALES:
+        step = scale * d
+        plus, minus = evaluator.residual(x + step), evaluator.residual(x - step)
+        D = 0.5 * (plus - minus)
+        error = np.abs(J @ step - D)
+        allowed = PROBE_RTOL * (np.abs(J) @ np.abs(step)) \
+            + 8.0 * np.finfo(float).eps * (np.abs(plus) + np.abs(minus))
+        wrong = error > allowed          # (NaN compares False: it cannot tell)
+        if errors:
+            wrong &= errors[-1][2]
+        if not wrong.any():
+            return None
+        errors.append((error / scale, D / (scale * PROBE_STEP), wrong))
+    (_, _, _), (middle, _, _), (last, D_last, wrong) = errors
+    steady = wrong & (last >= 0.5 * middle)
+    if not steady.any():
         return None
-    D2 = 0.5 * difference(2.0 * d)
-    trusted = np.abs(Jd - D) > 10.0 * np.abs(D - D2)
-    wrong = np.flatnonzero((excess > 0.0) & trusted & np.isfinite(D2))
-    if wrong.size == 0:
-        return None
-    i = int(wrong[np.argmax(np.abs(Jd - D)[wrong] / (np.abs(J) @ np.abs(d))[wrong])])
-    return (f"row {i} of the Jacobian gives the derivative {Jd[i] / PROBE_STEP:.10g} along "
-            f"d/h = {evaluator.problem.describe(d / PROBE_STEP)}, central differences of the "
-            f"residual give {D[i] / PROBE_STEP:.10g} (over d and 2d: "
-            f"{D2[i] / PROBE_STEP:.10g})")
+    i = int(np.flatnonzero(steady)[0])
+    slopes = ", ".join(f"{D[i]:.10g}" for _, D, _ in errors)
+    return (f"row {i} of the Jacobian gives the derivative {(J @ d)[i] / PROBE_STEP:.10g} "
+            f"along the direction (1 + |x|) v of the check, but the residual changes along it "
+            f"at {slopes} (central differences over h, h/16 and h/256 times it, h = 2^-17): "
+            "the same disagreement at every step is an error of the Jacobian, not of the "
+            "differences")
 
 
 class Evaluator:

@@ -42,8 +42,11 @@ PREDICTOR_NODES = 3
 UNRESOLVED = 0.1
 _UNRESOLVED_REASON = "the corrected point meets the tolerances"
 
-#: a run that reaches max_steps with its step below this fraction of ds_max says so
+#: a run that reaches max_steps with its step below this fraction of its longest says so
 CREEPING = 1e-6
+#: a run whose last step fails within this many of its length of a step that met non-finite
+#: values ends NON_FINITE (the steps shrank towards the edge of the residual's domain)
+EDGE = 1e3
 
 
 def trace(
@@ -264,16 +267,17 @@ class _Stepper:
         # (s, h) of the last step rejected for non-finite values: the steps that shrink
         # towards the edge of the residual's domain end in other rejections
         self.non_finite: tuple[float, float] | None = None
+        self.longest = 0.0
 
     def check_terminated(self) -> bool:
         """Whether the run has ended; the last checks, of the folds, once it has."""
         if self.status is None and self.steps >= self.run.options.max_steps:
             self.status = Status.MAX_STEPS
             self.message = f"{Status.MAX_STEPS.value} ({self.steps})"
-            if self.ds < CREEPING * self.run.options.ds_max:
+            if self.ds < CREEPING * self.longest:
                 self.message += (
-                    f"; the step size had fallen to {self.ds:.3g} (ds_max="
-                    f"{self.run.options.ds_max:.3g}): the curve may be singular or turn "
+                    f"; the step size had fallen to {self.ds:.3g} (the longest step was "
+                    f"{self.longest:.3g}): the curve may be singular or turn "
                     "sharply there, or the Jacobian may be wrong (continuation.check_jacobian); "
                     "the rejections are logged at DEBUG level by 'continuation.tracker'")
         if self.status is None:
@@ -337,6 +341,7 @@ class _Stepper:
             self._reject(h, str(error), Status.NOT_LOCATED)
             return
         self.steps += 1
+        self.longest = max(self.longest, h)
         self._end(add_step(run, point, new, found), closing, truncated, new)
         self.ds = max(options.ds_min,
                       min(options.ds_max, h * _step_multiplier(correction, alpha, order, options)))
@@ -375,8 +380,9 @@ class _Stepper:
                     f"{failure.value}: {reason}; even with the step size {h:.3g} "
                     f"(ds_min={self.run.options.ds_min:.3g}); the curve ends before it")
             else:
+                # near the edge: a step that met it from here was nearly as short as this one
                 edge = self.non_finite is not None \
-                    and self.point.s - self.non_finite[0] <= self.non_finite[1]
+                    and self.point.s - self.non_finite[0] <= self.non_finite[1] <= EDGE * h
                 self.status, self.message = _step_failure(self.run, self.point, self.steps,
                                                           reason, self.ds, edge)
 

@@ -33,6 +33,7 @@ __all__ = [
     "number_text",
     "thetas_from_gamma_delta",
     "traced_compliance",
+    "traced_friction",
     "traced_parameters",
 ]
 
@@ -129,6 +130,12 @@ def check_traced_friction(k: float) -> float:
                             "1e-4 <= k <= 1e6 (the point solver, groove solve, takes any k > 0)")
 
 
+def traced_friction(k: object) -> float:
+    """``k`` as a float if it is a real number in :data:`TRACED_K_RANGE` (a ``k`` that is not
+    finite or not positive named with that range too), else ``TypeError`` / ``ValueError``."""
+    return check_traced_friction(_check_real("friction coefficient k", k))
+
+
 def check_traced_ratio(c: float) -> float:
     """``c`` if inside :data:`TRACED_COMPLIANCE_RANGE`, else ``ValueError``."""
     return _in_traced_range("compliance ratio c", c, TRACED_COMPLIANCE_RANGE,
@@ -167,8 +174,7 @@ def traced_parameters(k_or_params, compliance: Compliance | float | None = None)
                             f"not both (got {k_or_params!r} and compliance={compliance!r})")
         params = k_or_params
     else:
-        check_traced_friction(_check_real("friction coefficient k", k_or_params))
-        params = Parameters(k_or_params, traced_compliance(compliance))
+        params = Parameters(traced_friction(k_or_params), traced_compliance(compliance))
     check_traced(params)
     return params
 

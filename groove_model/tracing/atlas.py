@@ -70,7 +70,7 @@ from ..model.parameters import (
     check_friction,
     check_traced_poisson,
     traced_compliance,
-    traced_parameters,
+    traced_friction,
 )
 from .atlas_result import ATLAS_COLUMNS, THRESHOLD_COLUMNS, Atlas, AtlasCurve, Threshold
 from .curves import PointKind
@@ -168,7 +168,7 @@ def trace_atlas(k_range=DEFAULT_K_RANGE, compliance: Compliance | float | None =
         If ``k_range`` is not a pair of numbers.
     """
     # (a k that is not positive or not finite is named with the traced range too)
-    k_min, k_max = (traced_parameters(k).k for k in _pair("k_range", k_range, "(k_min, k_max)"))
+    k_min, k_max = (traced_friction(k) for k in _pair("k_range", k_range, "(k_min, k_max)"))
     compliance = traced_compliance(compliance)
     atlas = atlas_in_k((k_min, k_max), compliance.ratio, options)
     # the Poisson ratio as given, for the tables (the atlas itself keeps the ratio only)
@@ -222,7 +222,7 @@ def trace_atlas_in_poisson(k: float, nu_range=DEFAULT_POISSON_RANGE,
         If ``k`` or the range is invalid: ``1e-4 <= k <= 1e6`` and
         ``0 <= nu_min < nu_max <= 1/2`` (the traced ranges).
     """
-    k = traced_parameters(k).k
+    k = traced_friction(k)
     nu_min, nu_max = (check_traced_poisson(nu)
                       for nu in _pair("nu_range", nu_range, "(nu_min, nu_max)"))
     if not nu_min < nu_max:

@@ -155,7 +155,7 @@ def test_a_wrong_jacobian_ends_the_run_at_the_start():
                   options=Options(fold_coordinates=(0,)))
     assert curve.status is Status.JACOBIAN_MISMATCH and not curve.ok and len(curve) == 0
     assert "row 0 of the Jacobian" in curve.message and "check_jacobian" in curve.message
-    assert curve.residual_evals == 5      # x0, then 2 + 2 for the check
+    assert curve.residual_evals == 7      # x0, then 2 at each of the 3 steps of the check
     with pytest.raises(ContinuationError, match="disagrees with differences"):
         trace(cubic_with(lambda y: 3.0 * y ** 2 - 2.9), [-18.0, -3.0],
               options=Options(raise_on_failure=True))
@@ -209,8 +209,7 @@ def test_max_steps_says_when_the_steps_had_collapsed():
 @pytest.mark.parametrize("value, said", [
     (lambda x: np.array([x[0]]), r"returned an array of shape \(1,\)"),
     (lambda x: None, "returned None"),
-    (lambda x: np.complex128(x[0]), r"returned the complex number \(-18\+0j\)"),
-    (lambda x: "0", r"returned '0' \(a str\)"),
+    (lambda x: complex(x[0], 1.0), r"returned the complex number \(-18\+1j\)"),
 ])
 def test_an_event_that_returns_no_real_number_is_a_shape_error(value, said):
     from continuation import CallbackShapeError, Event  # (only this test's)
