@@ -304,3 +304,12 @@ def test_a_curve_stopped_by_the_options_limits_fails_the_atlas(limit):
     assert not atlas.ok
     assert any("stopped before the curve's end" in failure and "raise Options.max_steps"
                in failure for failure in atlas.failures)
+
+
+def test_the_atlas_takes_numbers_for_k_not_parameters():
+    # Parameters(1, Compliance(0.8)) as an end of the range had its compliance dropped
+    from groove_model.model.parameters import Compliance, Parameters  # (only this test's)
+    with pytest.raises(TypeError, match="friction coefficient k must be a real number"):
+        trace_atlas((Parameters(1.0, Compliance(0.8)), 10.0))
+    with pytest.raises(TypeError, match="friction coefficient k must be a real number"):
+        trace_atlas_in_poisson(Parameters(1.0))

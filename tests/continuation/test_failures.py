@@ -215,3 +215,38 @@ def test_an_event_that_returns_no_real_number_is_a_shape_error(value, said):
     from continuation import CallbackShapeError, Event  # (only this test's)
     with pytest.raises(CallbackShapeError, match=f"event 'e' {said} at x=.*one real number"):
         trace(cubic_with(lambda y: 3.0 * y ** 2 - 3.0), [-18.0, -3.0], events=[Event("e", value)])
+
+
+@pytest.mark.parametrize("residual, jacobian, x0", [
+    # a Hill function of width 3e-6 (molar units): the differences over 7.6e-6 miss its slope
+    (lambda x: np.array([x[1] - x[0] ** 4 / (3e-6 ** 4 + x[0] ** 4)]),
+     lambda x: np.array([[-4.0 * 3e-6 ** 4 * x[0] ** 3 / (3e-6 ** 4 + x[0] ** 4) ** 2, 1.0]]),
+     [2e-6, 2e-6 ** 4 / (3e-6 ** 4 + 2e-6 ** 4)]),
+    # tanh of width 1e-6
+    (lambda x: np.array([x[1] - np.tanh(x[0] / 1e-6)]),
+     lambda x: np.array([[-1e6 / np.cosh(x[0] / 1e-6) ** 2, 1.0]]), [0.0, 0.0]),
+    # exactly linear, with a residual of 1.5e8 at the start: its rounding is 3e-8
+    (lambda x: np.array([x[0] + x[1] - 1.5e8]), lambda x: np.array([[1.0, 1.0]]), [0.0, 0.0]),
+])
+def test_a_right_jacobian_is_not_reported(residual, jacobian, x0):
+    # (these were reported when the check compared one step only, found in review)
+    curve = trace(Problem(residual, jacobian), x0, options=Options(max_steps=5))
+    assert curve.status is not Status.JACOBIAN_MISMATCH, curve.message
+
+
+def test_a_singular_point_near_a_nan_region_is_not_called_the_domains_edge():
+    # the cusp y^2 = x^3 ends the run STEP_TOO_SMALL; a NaN region 0.05 beyond it, which a long
+    # predictor step once met, does not make it NON_FINITE
+    def residual(x):
+        return np.array([x[1] ** 2 - x[0] ** 3 + (np.nan if x[0] < -0.05 else 0.0)])
+
+    curve = trace(Problem(residual, lambda x: np.array([[-3.0 * x[0] ** 2, 2.0 * x[1]]])),
+                  [1.0, -1.0], direction=[-1.0, 1.0])
+    assert curve.status is Status.STEP_TOO_SMALL
+
+
+def test_long_steps_are_not_called_collapsed():
+    circle = Problem(lambda x: np.array([x @ x - 1.0]), lambda x: np.array([2.0 * x]))
+    curve = trace(circle, [1.0, 0.0],
+                  options=Options(ds=1.0, ds_max=1e7, max_steps=10, detect_closed=False))
+    assert curve.message == "reached the maximum number of steps (10)"
