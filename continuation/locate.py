@@ -35,6 +35,12 @@ _EPS = np.finfo(float).eps
 
 #: relative offset of a trial point retried beside an exactly singular one
 NUDGE = 1e-9
+#: the largest value by which a zero at a bracket's start is passed (the scans pass 1e-300)
+_ZERO_PASSED = 1e-290
+#: a trial closer than this fraction of the bracket to a zero at its start, where the located
+#: function is exactly 0 too, is taken to be at that zero (next to a branch point the tangent
+#: component of the branch can round to 0 for about 1e-12 of arclength)
+BESIDE = 1e-6
 
 #: a trial's tangent is used when its cosine with the interpolated tangent exceeds this
 RELIABLE = math.cos(0.1)
@@ -172,7 +178,8 @@ def locate_zero(
                                  f"x={evaluator.problem.describe(result.x)}")
         return value
 
-    s, _, width = _brent(evaluate, start.s, f_start, end.s, f_end, options.event_tol)
+    beside = _beside_start(evaluate, start.s, f_start, max(options.event_tol, BESIDE * h))
+    s, _, width = _brent(beside, start.s, f_start, end.s, f_end, options.event_tol)
     if s == start.s:
         return Located(s, None, width, start)
     if s == end.s:
@@ -184,6 +191,25 @@ def locate_zero(
         if result.tangent is None:
             raise LocateError(f"no tangent at the located point s={s!r}")
     return Located(s, result, width, None)
+
+
+def _beside_start(evaluate: Callable[[float], float], start: float, f_start: float,
+                  reach: float) -> Callable[[float], float]:
+    """``evaluate``, but ``f_start`` for an exact 0 within ``reach`` of a zero at ``start``.
+
+    A zero at the bracket's start is passed as a tiny value (it belongs to the interval
+    before, or is the curve's own start, e.g. a branch point whose branch tangent has
+    ``t_i = 0``): a trial a hair beside it can round to exactly 0 too, which is that same zero,
+    not the crossing inside the bracket (Brent would stop there, and miss a fold 0.01 on).
+    """
+    if not 0.0 < abs(f_start) <= _ZERO_PASSED:
+        return evaluate
+
+    def beside(s: float) -> float:
+        value = evaluate(s)
+        return f_start if value == 0.0 and s - start <= reach else value
+
+    return beside
 
 
 def _brent(f, a: float, fa: float, b: float, fb: float, xtol: float,

@@ -373,3 +373,19 @@ def test_a_crossing_is_judged_by_signs_not_by_a_product_that_underflows():
     assert not crossed(1e-300, 7.5e-25) and crossed(1e-300, -7.5e-25)
     assert crossed(-1e-300, 0.0) and not crossed(0.0, -1.0)
     assert not crossed(1.0, math.nan) and not crossed(math.nan, -1.0)
+
+
+@pytest.mark.parametrize("c", [300.0, 5000.0, 1e5])
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_a_fold_in_the_first_step_off_a_pitchfork_is_located_where_it_is(c, side):
+    # new branch lam = u^2 - c u^4, folds in lam at u = +-1/sqrt(2 c), inside the first step;
+    # its tangent (0, 1) at the branch point has t_lam = 0, and trials within 1e-12 of it
+    # round to t_lam = 0 as well: the fold was reported there, at the branch point, and the
+    # real one was lost (found in review)
+    problem = Problem(lambda z: np.array([z[1] * (z[0] - z[1] ** 2 + c * z[1] ** 4)]),
+                      lambda z: np.array([[z[1], z[0] - 3 * z[1] ** 2 + 5 * c * z[1] ** 4]]))
+    curve = switch_branch(problem, np.zeros(2), direction=np.array([0.0, side]),
+                          options=Options(fold_coordinates=(0,), max_steps=20))
+    folds = [p.x for p in curve.special("fold")]
+    u = side / np.sqrt(2.0 * c)
+    assert len(folds) == 1 and folds[0] == pytest.approx([u * u - c * u ** 4, u], abs=1e-10)
