@@ -10,6 +10,9 @@ kind                        what happens (located as)
 ``CUSP``                    two folds of ``x_i`` meet and vanish: the fold curve turns in
                             ``p`` (a fold of the fold curve in ``p``, where the fold of the
                             curve ``H(., p) = 0`` is degenerate, ``d^2 x_i/ds^2 = 0``)
+``SINGULAR``                where a cusp would be, ``H_x`` has rank ``< n``: the curve
+                            ``H(., p) = 0`` is itself singular there (an isola is born or
+                            vanishes at a point, or two of its branches cross); not a cusp
 ``TANGENCY``                two event points meet and vanish: the event curve turns in ``p``
                             (the event is tangent to ``H(., p) = 0`` there)
 ``EVENT``                   a zero of an event of ``z``: a special point leaves through a
@@ -74,6 +77,7 @@ class Codim2Kind(str, enum.Enum):
     """Kinds of codimension-2 points (see the module's table); values are the names in files."""
 
     CUSP = "cusp"
+    SINGULAR = "singular"
     TANGENCY = "tangency"
     EVENT = "event"
     BRANCH_POINT = "branch_point"
@@ -508,7 +512,12 @@ def _codim2_point(point: SpecialPoint, system, events, turn_kind, names, options
     if point.kind is SpecialKind.FOLD and point.coordinate == n2 - 1:
         what = ("the fold is degenerate (d^2 x_i/ds^2 = 0): two folds meet" if turn_kind is
                 Codim2Kind.CUSP else "the event is tangent to the curve: two event points meet")
-        return Codim2Point(turn_kind, turn_kind.value, point.x.copy(), point.index, point.s,
+        kind = turn_kind
+        if turn_kind is Codim2Kind.CUSP and _rank_deficient(system, point.x):
+            kind, what = Codim2Kind.SINGULAR, (
+                "H_x has rank < n: the curve H(., p) = 0 is singular here (an isola is born or "
+                "vanishes, or two of its branches cross), no fold is defined, not a cusp")
+        return Codim2Point(kind, kind.value, point.x.copy(), point.index, point.s,
                            point.accuracy, point.residual,
                            (*equations, f"the tangent has no {names[-1]} component: {what}"))
     if point.kind is SpecialKind.BRANCH_POINT:
@@ -522,6 +531,19 @@ def _codim2_point(point: SpecialPoint, system, events, turn_kind, names, options
                            point.accuracy, residual, (*equations, f"event '{event.name}' = 0"),
                            point.event, event.terminal)
     return None
+
+
+#: ``H_x`` with a smallest singular value below this fraction of its largest has rank < n
+RANK_DEFICIENT = 1e-6
+
+
+def _rank_deficient(system, z: np.ndarray) -> bool:
+    """Whether ``H_x`` at ``z = (x, p)`` has rank ``< n``, against the size of ``H_z``
+    (with ``H_p``): a cusp needs rank ``n``, where only the fold's second derivative
+    vanishes, not the curve's Jacobian."""
+    family = system.family
+    smallest = np.linalg.svd(family.jacobian_x(z[:-1], float(z[-1])), compute_uv=False)[-1]
+    return bool(smallest <= RANK_DEFICIENT * np.abs(family.jacobian_z(z)).max())
 
 
 def _polish(system, event: Event, z: np.ndarray, options: Options) -> tuple[np.ndarray, float]:

@@ -423,6 +423,8 @@ def _threshold(start: _Start, group: list, axis: Axis, family: BoundaryFamily) -
     if known is None:
         short = f"{start.name}: {event}"
         what = {Codim2Kind.CUSP: f"two folds ({start.name}) meet and vanish (a cusp)",
+                Codim2Kind.SINGULAR: f"the boundary of {start.name} is itself singular there "
+                                     "(its Jacobian loses rank)",
                 Codim2Kind.TANGENCY: "two junctions meet and vanish (a tangency)",
                 Codim2Kind.BRANCH_POINT: f"{start.name} crosses another curve of special "
                                          "points"}.get(lead.kind, f"{start.name} meets {event}")

@@ -292,3 +292,17 @@ def test_points_at_p_of_a_fold_curve_traced_with_difference_quotients():
         (z,) = folds.at(p)
         assert z[-1] == p
         assert np.max(np.abs(family.residual_z(z))) <= 1e-9
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_where_the_curve_itself_is_singular_the_point_is_no_cusp(sign):
+    # x0^2 + sign x1^2 = p: at p = 0 the curve is one point (an isola is born, sign = 1) or two
+    # crossing lines (sign = -1); H_x = 0 there, so no fold is defined; it was called a cusp
+    family = Family(lambda x, p: np.array([sign * x[1] ** 2 + x[0] ** 2 - p]),
+                    lambda x, p: np.array([[2.0 * x[0], 2.0 * sign * x[1]]]), parameter="p")
+    folds = follow_fold(family, [1.0, 0.0], p=1.0, coordinate=0, direction=-1,
+                        parameter_range=(-1.0, 1.0))
+    assert [q.kind for q in folds.points] == [Codim2Kind.SINGULAR, Codim2Kind.EVENT]
+    assert np.max(np.abs(folds.points[0].z)) < 1e-10
+    assert "not a cusp" in folds.points[0].equations[-1]
+    assert folds.special(Codim2Kind.CUSP) == ()
