@@ -533,7 +533,7 @@ def _codim2_point(point: SpecialPoint, system, events, turn_kind, names, options
     return None
 
 
-#: ``H_x`` with a smallest singular value below this fraction of its largest has rank < n
+#: ``H_x`` with a smallest singular value below this fraction of ``max |H_z|`` has rank < n
 RANK_DEFICIENT = 1e-6
 
 

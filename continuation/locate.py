@@ -21,7 +21,7 @@ from .node import EventNotFinite, LocateError, Node
 from .options import Options
 from .predictor import hermite
 from .problem import Evaluator
-from .scan import JUMP
+from .scan import _TINY, JUMP  # _TINY: how the scans pass a zero at a bracket's start
 
 __all__ = [
     "Located",
@@ -35,8 +35,6 @@ _EPS = np.finfo(float).eps
 
 #: relative offset of a trial point retried beside an exactly singular one
 NUDGE = 1e-9
-#: the largest value by which a zero at a bracket's start is passed (the scans pass 1e-300)
-_ZERO_PASSED = 1e-290
 #: a trial closer than this fraction of the bracket to a zero at its start, where the located
 #: function is exactly 0 too, is taken to be at that zero (next to a branch point the tangent
 #: component of the branch can round to 0 for about 1e-12 of arclength)
@@ -202,7 +200,7 @@ def _beside_start(evaluate: Callable[[float], float], start: float, f_start: flo
     ``t_i = 0``): a trial a hair beside it can round to exactly 0 too, which is that same zero,
     not the crossing inside the bracket (Brent would stop there, and miss a fold 0.01 on).
     """
-    if not 0.0 < abs(f_start) <= _ZERO_PASSED:
+    if abs(f_start) != _TINY:
         return evaluate
 
     def beside(s: float) -> float:

@@ -283,12 +283,12 @@ def probe_jacobian(evaluator: Evaluator, x: np.ndarray, J: np.ndarray) -> str | 
         if not wrong.any():
             return None
         errors.append((error / scale, D / (scale * PROBE_STEP), wrong))
-    (_, _, _), (middle, _, _), (last, D_last, wrong) = errors
+    (middle, _, _), (last, _, wrong) = errors[1:]
     steady = wrong & (last >= 0.5 * middle)
     if not steady.any():
         return None
     i = int(np.flatnonzero(steady)[0])
-    slopes = ", ".join(f"{D[i]:.10g}" for _, D, _ in errors)
+    slopes = ", ".join(f"{slope[i]:.10g}" for _, slope, _ in errors)
     return (f"row {i} of the Jacobian gives the derivative {(J @ d)[i] / PROBE_STEP:.10g} "
             f"along the direction (1 + |x|) v of the check, but the residual changes along it "
             f"at {slopes} (central differences over h, h/16 and h/256 times it, h = 2^-17): "

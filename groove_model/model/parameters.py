@@ -172,11 +172,9 @@ def traced_parameters(k_or_params, compliance: Compliance | float | None = None)
         if compliance is not None:
             raise TypeError(f"give the compliance once: in the Parameters or as compliance=, "
                             f"not both (got {k_or_params!r} and compliance={compliance!r})")
-        params = k_or_params
-    else:
-        params = Parameters(traced_friction(k_or_params), traced_compliance(compliance))
-    check_traced(params)
-    return params
+        check_traced(k_or_params)
+        return k_or_params
+    return Parameters(traced_friction(k_or_params), traced_compliance(compliance))
 
 
 def traced_compliance(compliance: Compliance | float | None) -> Compliance:

@@ -31,7 +31,7 @@ from ..model.parameters import (
     Parameters,
     check_flag,
     traced_compliance,
-    traced_parameters,
+    traced_friction,
 )
 from .curves import CSV_COLUMNS, TraceError
 from .tracer import trace_boundaries
@@ -114,7 +114,7 @@ def _check_ks(ks, compliance: Compliance | float | None) -> tuple[list[float], C
         if isinstance(k, Parameters):
             raise TypeError(f"ks must be friction coefficients (real numbers), got {k!r}: give "
                             "the compliance, the same for every k, as compliance=")
-        values.append(traced_parameters(k, compliance).k)  # TypeError for str, bool, ...
+        values.append(traced_friction(k))  # TypeError for str, bool, ...
     return values, compliance
 
 

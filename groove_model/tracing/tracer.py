@@ -335,14 +335,15 @@ class _Job:
 
 
 def _tracer_options(options: Options | None, raise_on_failure: bool) -> tuple[Options, bool]:
-    """``options`` with the tracer's own switches (:data:`DEFAULT_OPTIONS`'), and whether to
-    raise (``options.raise_on_failure`` asks it too; the engine itself never raises here)."""
+    """``options`` with the tracer's own switches (those of :data:`DEFAULT_OPTIONS`), and
+    whether to raise (``options.raise_on_failure`` asks it too; the engine never raises here)."""
     if options is None:
         return DEFAULT_OPTIONS, raise_on_failure
     if not isinstance(options, Options):
         raise TypeError(f"options must be a continuation.Options, got {type(options).__name__}")
     kept = replace(options, fold_coordinates=DEFAULT_OPTIONS.fold_coordinates,
-                   detect_branch_points=False, detect_closed=False, raise_on_failure=False)
+                   detect_branch_points=DEFAULT_OPTIONS.detect_branch_points,
+                   detect_closed=DEFAULT_OPTIONS.detect_closed, raise_on_failure=False)
     return kept, raise_on_failure or options.raise_on_failure
 
 

@@ -170,7 +170,7 @@ def test_the_jacobian_check_passes_good_and_approximate_jacobians_and_can_be_off
                  options=Options(max_steps=5))
     assert near.status is Status.MAX_STEPS
     # next to the singularity of sqrt, where the differences' truncation error exceeds
-    # PROBE_RTOL, the differences over 2 d tell it: not reported
+    # PROBE_RTOL, the differences over d/16 and d/256 tell it: not reported
     steep = Problem(lambda x: np.array([np.sqrt(x[0]) - x[1]]),
                     lambda x: np.array([[0.5 / np.sqrt(x[0]), -1.0]]))
     assert trace(steep, [1e-4, 1e-2], direction=[1.0, 0.0],
