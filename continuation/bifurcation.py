@@ -19,6 +19,11 @@ _EPS = np.finfo(float).eps
 #: largest smallest-singular-value ratio accepted at a branch point
 BRANCH_POINT_RATIO = 1e-6
 
+#: a ratio of the bifurcation form's eigenvalues below which their signs are checked against
+#: the error of the differences (a second set with twice the step): a double root (a cusp, a
+#: touching of branches) has eigenvalues of either sign at the level of that error
+_IN_DOUBT = 1e-4
+
 
 def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray,
                         length: float | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -40,12 +45,8 @@ def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray,
     size = float(np.max(np.abs(x)))
     scale = max(1.0, size) if length is None else min(max(1.0, size), max(size, 100.0 * length))
     h = _EPS ** (1.0 / 3.0) * scale
-    d1 = (evaluator.jacobian(x + h * v1) - evaluator.jacobian(x - h * v1)) / (2.0 * h)
-    d2 = (evaluator.jacobian(x + h * v2) - evaluator.jacobian(x - h * v2)) / (2.0 * h)
-    a = float(psi @ d1 @ v1)
-    b = 0.5 * float(psi @ d1 @ v2 + psi @ d2 @ v1)
-    c = float(psi @ d2 @ v2)
-    quadratic = np.array([[a, b], [b, c]])
+    quadratic = _bifurcation_form(evaluator, x, psi, v1, v2, h)
+    a, b, c = quadratic[0, 0], quadratic[0, 1], quadratic[1, 1]
     scale = singular_values[0] if n > 1 else float(np.max(np.abs(quadratic)))
     if not singular_values[n - 1] <= BRANCH_POINT_RATIO * scale:
         raise ValueError(
@@ -54,14 +55,31 @@ def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray,
             "locate it first with locate_branch_point or take it from Curve.special"
             "('branch_point')")
     eigenvalues, rotation = np.linalg.eigh(quadratic)
-    if not eigenvalues[0] < 0 < eigenvalues[1]:
+    noise = 0.0
+    if min(-eigenvalues[0], eigenvalues[1]) < _IN_DOUBT * max(-eigenvalues[0], eigenvalues[1]):
+        # two nearly equal roots: a real pair, or a double root split by the differences' error?
+        noise = 2.0 * float(np.max(np.abs(
+            quadratic - _bifurcation_form(evaluator, x, psi, v1, v2, 2.0 * h))))
+    if not (eigenvalues[0] < -noise and eigenvalues[1] > noise):
         raise ValueError(
             "x_bp is not a simple branch point: the algebraic bifurcation equation "
             f"a*alpha^2 + 2*b*alpha*beta + c*beta^2 = 0 has a={a:.3g}, b={b:.3g}, c={c:.3g}, "
-            f"discriminant b^2 - a*c = {b * b - a * c:.3g} (must be > 0)")
+            f"discriminant b^2 - a*c = {b * b - a * c:.3g} (must be > 0"
+            + (f", with eigenvalues of [[a, b], [b, c]] beyond the differences' error "
+               f"{noise:.3g})" if noise else ")"))
     tangents = []
     for sign in (1.0, -1.0):
         z = rotation @ np.array([math.sqrt(eigenvalues[1]), sign * math.sqrt(-eigenvalues[0])])
         t = z[0] * v1 + z[1] * v2
         tangents.append(t / np.linalg.norm(t))
     return tangents[0], tangents[1]
+
+
+def _bifurcation_form(evaluator: Evaluator, x: np.ndarray, psi: np.ndarray, v1: np.ndarray,
+                      v2: np.ndarray, h: float) -> np.ndarray:
+    """``[[a, b], [b, c]]`` of the bifurcation equation from central differences of step ``h``
+    of the Jacobian (error ``O(h^2) + O(eps |J| / h)``)."""
+    d1 = (evaluator.jacobian(x + h * v1) - evaluator.jacobian(x - h * v1)) / (2.0 * h)
+    d2 = (evaluator.jacobian(x + h * v2) - evaluator.jacobian(x - h * v2)) / (2.0 * h)
+    b = 0.5 * float(psi @ d1 @ v2 + psi @ d2 @ v1)
+    return np.array([[float(psi @ d1 @ v1), b], [b, float(psi @ d2 @ v2)]])

@@ -59,6 +59,27 @@ def test_branch_tangents_reject_a_regular_point(pitchfork):
         branch_tangents(pitchfork, [1.0, 1.0])
 
 
+def test_branch_tangents_reject_a_double_root_split_by_the_differences_error():
+    # x^2 = lam^3 exp(lam) is a cusp at the origin, not a crossing: c = H_lam_lam = 0 there,
+    # but the central differences of its Jacobian give c = -4 h^2 < 0, as if two branches met
+    # at an angle of 2e-5 rad
+    cusp = Problem(
+        residual=lambda y: np.array([y[0] ** 2 - y[1] ** 3 * np.exp(y[1])]),
+        jacobian=lambda y: np.array([[2 * y[0], -(3 * y[1] ** 2 + y[1] ** 3) * np.exp(y[1])]]))
+    with pytest.raises(ValueError, match="beyond the differences' error"):
+        branch_tangents(cusp, [0.0, 0.0])
+
+
+def test_branch_tangents_of_branches_crossing_at_a_small_angle():
+    # x^2 = 1e-9 lam^2: a true crossing at 2 atan(sqrt(1e-9)) = 6.3e-5 rad, kept
+    narrow = Problem(residual=lambda y: np.array([y[0] ** 2 - 1e-9 * y[1] ** 2]),
+                     jacobian=lambda y: np.array([[2 * y[0], -2e-9 * y[1]]]))
+    first, second = branch_tangents(narrow, [0.0, 0.0])
+    for t in (first, second):
+        assert abs(t[0]) == pytest.approx(math.sqrt(1e-9 / (1 + 1e-9)), rel=1e-6)
+    assert first[0] * first[1] * second[0] * second[1] < 0
+
+
 @pytest.mark.parametrize("direction, sign", [(1, 1.0), (-1, -1.0)])
 def test_switch_branch_follows_the_pitchfork_both_ways(pitchfork, trivial_branch, direction,
                                                        sign):
