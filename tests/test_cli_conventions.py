@@ -62,6 +62,12 @@ def test_verbose_before_or_after_the_command(argv):
     assert build_parser().parse_args(argv).verbose is True
 
 
+@pytest.mark.parametrize("before", [["--"], ["-v", "--"]])
+def test_a_separator_before_the_command_is_no_command(before, capsys):
+    assert main([*before, "solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"]) == 0
+    assert "rolling sliding" in capsys.readouterr().out
+
+
 def test_verbose_is_off_by_default():
     args = build_parser().parse_args(["solve", "--gamma", "0.6", "--delta", "0.2", "-k", "1"])
     assert getattr(args, "verbose", False) is False

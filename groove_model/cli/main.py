@@ -59,6 +59,18 @@ def build_parser(commands: Collection[str] | None = None) -> argparse.ArgumentPa
     return parser
 
 
+def _without_separator_before_command(argv: list[str]) -> list[str]:
+    """``argv`` without a ``--`` between ``groove``'s own options and the command
+    (``groove -- solve ...``): it ends no options there, and Python 3.11's argparse reads it as
+    the command's name."""
+    for i, token in enumerate(argv):
+        if token == "--":
+            return argv[:i] + argv[i + 1:] if i + 1 < len(argv) else argv
+        if not token.startswith("-"):
+            break
+    return argv
+
+
 def _commands_to_load(argv: Sequence[str]) -> tuple[str, ...] | None:
     """The command ``argv`` runs, as :func:`build_parser`'s ``commands``: none for ``groove``'s
     own options (``--help``, ``--version``), every one where the command is not plain to see."""
@@ -72,7 +84,7 @@ def _commands_to_load(argv: Sequence[str]) -> tuple[str, ...] | None:
 
 def main(argv=None) -> int:
     """Entry point of the ``groove`` console script; returns the exit code."""
-    argv = sys.argv[1:] if argv is None else list(argv)
+    argv = _without_separator_before_command(sys.argv[1:] if argv is None else list(argv))
     try:
         parser = build_parser(_commands_to_load(argv))
         args = parser.parse_args(argv)
