@@ -8,8 +8,11 @@ import re
 import numpy as np
 import pytest
 
+from groove_model.cli.main import main
 from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import DEFAULT_OPTIONS, Where, topology, trace_boundaries
+from groove_model.tracing import atlas as atlas_module
+from groove_model.tracing import tracer as tracer_module
 from groove_model.tracing.topology import expected_topology, format_table, thresholds
 
 
@@ -116,7 +119,33 @@ def test_a_curve_that_stops_short_is_a_failure_with_a_message():
     assert not bs.ok
     dr = bs.curves["dr_limit"]
     assert not dr.ok and "expected gamma_min" in dr.status
-    assert "differs from the expected topology for k = 10.0" in dr.status
+    assert "differs from the expected topology for k = 10:" in dr.status
+    assert "(the continuation: reached the maximum number of steps (5))" in dr.status
+
+
+def test_an_inconsistent_junction_is_named_in_coordinates_and_fails_dr_limit_only(monkeypatch):
+    # no tolerance at all: the junction located on dr_limit is 1e-13 from dr_no_roll's
+    monkeypatch.setattr(tracer_module, "JUNCTION_TOLERANCE", -1.0)
+    bs = trace_boundaries(10.0)
+    dr, rs = bs.curves["dr_limit"], bs.curves["rs_limit"]
+    assert not dr.ok and "the junction is not consistent" in dr.status
+    assert "at (gamma, delta, beta_L, upsilon) = (0.8998122762, 0.5713153981" in dr.status
+    assert "np.float64" not in dr.status
+    # rs_limit is compared with the equations of dr_limit, not with its failed trace
+    assert rs.ok and bs.limit_distance <= 1e-10
+
+
+def test_a_failed_atlas_of_the_thresholds_is_an_error_message_not_a_traceback(
+        monkeypatch, tmp_path, capsys):
+    # a compliance no other test uses: lru_cache keeps no failure, and no other c is touched
+    monkeypatch.setattr(atlas_module, "ATLAS_OPTIONS",
+                        dataclasses.replace(atlas_module.ATLAS_OPTIONS, max_steps=3))
+    assert main(["trace", "-k", "1", "--poisson", "0.123", "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert err.startswith("groove trace: error: the thresholds in k for c = 0.9")
+    assert "could not be computed: their atlas failed" in err
+    assert "reached the maximum number of steps (3)" in err and "Traceback" not in err
+    assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
 
 def test_every_traced_curve_says_where_it_starts_and_ends():

@@ -115,6 +115,18 @@ def main(argv=None) -> int:
             print(f"groove {args.command}: error: {exc.strerror}", file=sys.stderr)
             return EXIT_FAILED
         parser.exit(EXIT_USAGE, f"groove {args.command}: error: {_os_message(exc)}\n")
+    except Exception as exc:
+        # A computation that failed where the command does not handle it itself (the
+        # thresholds' atlas under `trace`, say): its message, not a traceback (with -v, both).
+        # Imported here, not at the top: numpy is what `groove --help` should not wait for.
+        from .common import computation_errors
+
+        if not isinstance(exc, computation_errors()):
+            raise
+        if verbose:
+            logging.getLogger(__name__).exception("the computation failed")
+        print(f"groove {args.command}: error: {exc}", file=sys.stderr)
+        return EXIT_FAILED
     return EXIT_FAILED  # pragma: no cover
 
 

@@ -239,7 +239,9 @@ class BoundarySet:
         absent unless the unphysical parts were kept.
     limit_distance : float
         Largest distance in ``x`` from a point of ``rs_limit`` to the curve ``dr_limit``
-        (they are the same curve, paper "Rolling-sliding solutions").
+        (they are the same curve, paper "Rolling-sliding solutions"), each point projected
+        onto the equations of ``dr_limit``; NaN where ``rs_limit`` failed or a projection did
+        not converge (``rs_limit`` then fails).
     notes : tuple of str
         What was found, e.g. that ``dr_no_roll`` has no physical part for ``k < sqrt 2``.
     params : Parameters

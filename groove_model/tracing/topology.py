@@ -58,7 +58,7 @@ import logging
 import math
 from dataclasses import dataclass
 
-from ..model.parameters import Parameters
+from ..model.parameters import Parameters, number_text
 from .atlas import Atlas, Threshold, atlas_in_k
 from .curves import PointKind
 
@@ -251,8 +251,9 @@ def thresholds_from_atlas(atlas: Atlas) -> Thresholds:
         If the atlas failed (a curve could not be followed).
     """
     if not atlas.ok:
-        raise RuntimeError(f"the atlas for c = {atlas.axis.fixed!r} failed: "
-                           + "; ".join(atlas.failures))
+        raise RuntimeError(f"the thresholds in k for c = {number_text(atlas.axis.fixed)} (where "
+                           "the expected shape of the boundaries changes) could not be "
+                           "computed: their atlas failed: " + "; ".join(atlas.failures))
     return Thresholds(atlas.axis.fixed, atlas.thresholds, topology_table(atlas))
 
 

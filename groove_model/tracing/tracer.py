@@ -92,8 +92,9 @@ GAMMA_MIN = 1e-3
 LIMIT_TOLERANCE = 1e-10
 
 
-def _limit_distance(dr: BoundaryCurve, rs: BoundaryCurve, params: Parameters) -> float:
-    """Largest distance from a point of ``rs_limit`` to the curve ``dr_limit``.
+def _limit_distance(rs: BoundaryCurve, params: Parameters) -> float:
+    """Largest distance from a point of ``rs_limit`` to the curve ``dr_limit`` (its equations,
+    not its traced points).
 
     Each point is projected onto ``dr_limit`` by Gauss-Newton with the minimum-norm step
     ``dx = -J^T (J J^T)^{-1} H`` in the smooth chart, every point at once. The first step is
@@ -151,7 +152,12 @@ def _topology_problems(curve: BoundaryCurve, expected: CurveTopology) -> list[st
         if len(rows):
             last = curve.x[rows[-1]]
             where = f" (gamma, delta) = ({last[0]:.9g}, {last[1]:.9g})"
-        problems.append(f"ends at {curve.end}{where}, expected {expected.end}")
+        if curve.end is Where.NOWHERE and curve.engine:
+            # no end of any kind: the continuation stopped short, and its message says why
+            problems.append(f"stops at no end{where} (the continuation: "
+                            f"{curve.engine[0].message}), expected {expected.end}")
+        else:
+            problems.append(f"ends at {curve.end}{where}, expected {expected.end}")
     first, last = (int(rows[0]), int(rows[-1])) if len(rows) else (0, -1)
     inner_points = [p for p in curve.special_points
                     if first < p.index < last and curve.physical[p.index]
@@ -177,7 +183,7 @@ def _check(curves: dict, params: Parameters, expected: dict) -> dict:
         problems = _topology_problems(curve, expected[name]) if curve.ok else []
         if problems:
             curve = curve.failed(f"the traced curve differs from the expected topology for "
-                                 f"k = {params.k!r}: it " + "; it ".join(problems))
+                                 f"k = {k_text(params.k)}: it " + "; it ".join(problems))
         checked[name] = curve
     return checked
 
@@ -207,7 +213,7 @@ def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
     note = "meets dr_no_roll and rs_no_roll (upsilon = 0)"
     if junction is None:
         if crossings and expected is not None:
-            where = tuple(system.to_x(limit.x[crossings[0].index]))
+            where = _x_text(system.to_x(limit.x[crossings[0].index]))
             return (), (f"upsilon = 0 on dr_limit at {where}, but dr_no_roll has no junction: the "
                         "junction is not consistent")
         return (), ""
@@ -216,16 +222,21 @@ def _limit_junction(system: BoundarySystem, limit: Curve, tagged: list[Tagged],
         distance = float(np.max(np.abs(seed - junction)))
         if distance <= SEED_JUNCTION:
             return ((0, f"{note}, within {distance:.2g} of the seed", seed),), ""
-        return (), (f"dr_no_roll ends at a junction {tuple(junction)}, {distance:.3g} from the "
+        return (), (f"dr_no_roll ends at a junction {_x_text(junction)}, {distance:.3g} from the "
                     "seed, but upsilon = 0 is not crossed on dr_limit: the junction is not "
                     "consistent")
     index = crossings[0].index
     distance = float(np.max(np.abs(system.to_x(limit.x[index]) - junction)))
     problem = "" if distance <= JUNCTION_TOLERANCE else (
-        f"upsilon = 0 on dr_limit at {tuple(system.to_x(limit.x[index]))} is {distance:.3g} from "
-        f"the end of dr_no_roll at {tuple(junction)}, where T/N_L = k: the junction is not "
+        f"upsilon = 0 on dr_limit at {_x_text(system.to_x(limit.x[index]))} is {distance:.3g} "
+        f"from the end of dr_no_roll at {_x_text(junction)}, where T/N_L = k: the junction is not "
         "consistent")
     return ((index, note, junction),), problem
+
+
+def _x_text(x) -> str:
+    """A point ``x = (gamma, delta, beta_L, upsilon)`` for messages."""
+    return "(gamma, delta, beta_L, upsilon) = (" + ", ".join(f"{float(v):.10g}" for v in x) + ")"
 
 
 #: largest distance of a junction from the seed at which no crossing of upsilon = 0 is located
@@ -442,12 +453,13 @@ def trace_boundaries(k, *, compliance: Compliance | float | None = None,
                      "(d_L < 0) is not traced, even with keep_unphysical")
 
     curves = _check(curves, params, expected)
-    distance = (_limit_distance(curves["dr_limit"], curves["rs_limit"], params)
-                if curves["dr_limit"].ok and curves["rs_limit"].ok else math.nan)
+    distance = _limit_distance(curves["rs_limit"], params) if curves["rs_limit"].ok else math.nan
     if curves["rs_limit"].ok and not distance <= LIMIT_TOLERANCE:
         curves["rs_limit"] = curves["rs_limit"].failed(
-            f"rs_limit is {distance!r} from dr_limit, more than {LIMIT_TOLERANCE:g}: the two "
-            "systems of the one limit curve disagree")
+            f"rs_limit is {distance:.3g} from dr_limit, more than {LIMIT_TOLERANCE:g}: the two "
+            "systems of the one limit curve disagree" if math.isfinite(distance) else
+            "rs_limit could not be compared with dr_limit: projecting its points onto the "
+            "equations of dr_limit did not converge")
     if certify:
         curves = certify_boundaries(curves, job.traced, gamma_min)
     order = {name: i for i, name in enumerate(BOUNDARY_NAMES)}
