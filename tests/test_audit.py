@@ -1,5 +1,6 @@
 """The audit of the paper's claims: quotes, counterexamples re-checked, report files, CLI."""
 
+import dataclasses
 import json
 import math
 import re
@@ -13,7 +14,7 @@ from groove_model.analysis.audit.context import sign_changes
 from groove_model.analysis.audit.report import DEFAULT_KS, VERDICTS, Claim, normalise_tex
 from groove_model.analysis.audit.run import run_audit
 from groove_model.cli.common import EXIT_USAGE, UsageError
-from groove_model.cli.main import build_parser
+from groove_model.cli.main import build_parser, main
 from groove_model.model.boundaries import boundary_system
 from groove_model.model.equilibrium import (
     double_rolling_state,
@@ -232,6 +233,25 @@ def test_a_failing_tracer_is_reported_not_fatal(monkeypatch):
     assert result.tracer["k = 1"] == "unavailable: RuntimeError: engine exploded"
     assert math.isnan(result.claim("dr_limit_from_arctan_k").numbers["k = 1"][
         "tracer: |start - (arctan k, 0)|"])
+
+
+def test_a_curve_that_stops_short_feeds_no_claim_and_fails_audit_trace(monkeypatch, capsys):
+    # the tracer stops after 10 steps: its curves are traced normally but end short of where
+    # they must, so the set fails; it once fed "tracer end: gamma = 0.572" to the claims
+    # ("holds") and `groove audit --trace` exited 0 with nothing on stderr
+    from groove_model.tracing import tracer
+
+    monkeypatch.setattr(tracer, "DEFAULT_OPTIONS",
+                        dataclasses.replace(tracer.DEFAULT_OPTIONS, max_steps=10))
+    result = run_audit((1.0,), use_tracer=True)
+    assert result.tracer["k = 1"].startswith("failed: dr_limit: ")
+    assert math.isnan(result.claim("dr_limit_from_arctan_k").numbers["k = 1"][
+        "tracer: |start - (arctan k, 0)|"])
+    capsys.readouterr()
+    assert main(["audit", "-k", "1", "--trace"]) == 1
+    err = capsys.readouterr().err
+    assert "groove audit: error: the tracer's cross-check for k = 1: failed: dr_limit:" in err
+    assert "reached the maximum number of steps (10)" in err
 
 
 def test_audit_rejects_bad_friction():

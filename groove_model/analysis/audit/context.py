@@ -143,7 +143,7 @@ class Context:
         def compute():
             label = k_label(k)
             if not self.use_tracer:
-                self.tracer_status[label] = "not used (use_tracer=False)"
+                self.tracer_status[label] = "not run (groove audit --trace runs it)"
                 return None
             try:
                 # Imported here: the tracer brings the continuation engine and pandas, which
@@ -157,7 +157,12 @@ class Context:
                 self.tracer_status[label] = f"unavailable: {type(exc).__name__}: {exc}"
                 log.warning("tracer cross-check unavailable for k = %g: %s", k, exc)
                 return None
-            self.tracer_status[label] = "ok" if bs.ok else "partial: " + "; ".join(bs.failures)
+            if not bs.ok:
+                # no number of a claim's table comes from a curve that failed (it may stop short)
+                self.tracer_status[label] = "failed: " + "; ".join(bs.failures)
+                log.warning("tracer cross-check failed for k = %g: %s", k, "; ".join(bs.failures))
+                return None
+            self.tracer_status[label] = "ok"
             return bs
         return self.cached(("traced", k), compute)
 
