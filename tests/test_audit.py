@@ -392,7 +392,7 @@ def test_default_audit_runs_in_seconds(capsys):
     (["audit", "-k", "abc"], "friction coefficient k = 'abc' is not a number"),
     (["map", "-k", "-2", "-o", "m.png"], "friction coefficient k = -2.0 is outside"),
     (["map", "-k", "1", "-o", "m.png", "--resolution", "1"],
-     "grid resolution N = 1 is outside the allowed range 2 <= N <= 20000"),
+     "grid resolution N = 1 is outside the allowed range 2 <= N <= 5000"),
     (["map", "-k", "1", "-o", "m.png", "--resolution", "x"],
      "grid resolution N = 'x' is not an integer"),
     # a number that is no double is named as typed too (it read "k = 0.0" alone)

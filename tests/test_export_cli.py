@@ -1,5 +1,6 @@
 """CSV export, the committed results, and the trace / plot commands."""
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -496,3 +497,19 @@ def test_plot_warns_of_a_file_cut_short_and_draws_it(written, tmp_path, capsys):
     assert "the last row of dr_limit (s = " in err and "is not marked as its end" in err
     assert main(["plot", str(out / "boundaries_k10.csv"), "-o", str(target)]) == 0
     assert "warning" not in capsys.readouterr().err
+
+
+def test_the_files_of_a_k_that_failed_left_from_an_earlier_run_are_pointed_out(
+        tmp_path, capsys, monkeypatch):
+    # the old CSVs of a k that fails now sat beside the new ones with no word: they looked current
+    out = tmp_path / "out"
+    assert main(["trace", "-k", "2", "--out", str(out), "--no-figure"]) == 0
+    capsys.readouterr()
+    short = dataclasses.replace(tracer_module.DEFAULT_OPTIONS, max_steps=10)
+    real = tracer_module.trace_boundaries
+    monkeypatch.setattr(tracer_module, "trace_boundaries",
+                        lambda k, **kw: real(k, **kw, options=short))
+    assert main(["trace", "-k", "2", "--out", str(out), "--no-figure"]) == 1
+    err = capsys.readouterr().err
+    for name in ("boundaries_k2.csv", "special_points_k2.csv"):
+        assert f"{out / name} is from an earlier run (not rewritten)" in err

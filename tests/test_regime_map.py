@@ -14,7 +14,14 @@ from matplotlib.colors import to_rgba
 from matplotlib.image import AxesImage
 from matplotlib.lines import Line2D
 
-from groove_model.analysis.regimes import CATEGORIES, OUTSIDE, classify_grid, classify_points
+from groove_model.analysis.regimes import (
+    CATEGORIES,
+    OUTSIDE,
+    classify_cells,
+    classify_grid,
+    classify_points,
+)
+from groove_model.cli.main import build_parser, main
 from groove_model.model.boundaries import boundary_system
 from groove_model.model.equilibrium import double_rolling_state, solve_equilibrium
 from groove_model.model.lines import dr_limit_no_roll_point, dr_no_roll_line
@@ -105,6 +112,38 @@ def test_grid_is_immutable():
 def test_bad_resolution_is_rejected(n, error, match):
     with pytest.raises(error, match=match):
         classify_grid(1.0, n)
+
+
+def test_grids_are_solved_in_blocks_with_the_same_result():
+    # the map at N = 20000 needed 130 GB when every cell was solved in one call: the grids are
+    # now solved in blocks of rows (about 131072 nodes: three at n = 600), each node on its
+    # own, so the blocks change no bit against the points solved in one call
+    n = 600
+    centres = (np.arange(n) + 0.5) * (0.5 * math.pi / n)
+    G, D = np.meshgrid(centres, centres)
+    inside = D <= G
+    cells = classify_cells(10.0, n)
+    assert np.array_equal(cells[inside], classify_points(G[inside], D[inside], 10.0))
+    assert np.all(cells[~inside] == OUTSIDE)
+    grid = classify_grid(10.0, n)
+    G, D = np.meshgrid(grid.gamma, grid.delta)
+    inside = D <= G
+    assert np.array_equal(grid.category[inside], classify_points(G[inside], D[inside], 10.0))
+    assert np.array_equal(grid.upsilon[inside],
+                          solve_equilibrium(G[inside], D[inside], 10.0).upsilon)
+
+
+def test_a_drawn_map_takes_at_most_the_resolution_its_memory_allows(tmp_path, capsys):
+    assert regime_map.MAP_RESOLUTION_MAX == 5000
+    fig, ax = plt.subplots()
+    with pytest.raises(ValueError, match=r"n = 5001 is outside the allowed range 2 <= n <= 5000"):
+        regime_map.draw_regime_map(ax, 1.0, n=5001, boundaries=False)
+    plt.close(fig)
+    with pytest.raises(SystemExit):
+        main(["map", "-k", "1", "-o", str(tmp_path / "m.png"), "--resolution", "5001"])
+    assert "N = 5001 is outside the allowed range 2 <= N <= 5000" in capsys.readouterr().err
+    assert build_parser().parse_args(
+        ["map", "-k", "1", "-o", "m.png", "--resolution", "5000"]).resolution == 5000
 
 
 def test_bad_friction_is_rejected():

@@ -223,6 +223,13 @@ def test_sweep_command_of_200_k_writes_the_same_bytes_for_jobs_1_and_4(tmp_path)
     (["--k-min", "1", "--k-max", "2", "-n", "0"], "-n"),
     (["--k-min", "1", "--k-max", "2", "-n", "3", "--jobs", "0"], "--jobs"),
     (["--k-min", "1", "--k-max", "1", "-n", "3"], "would all be that one k"),
+    # geomspace gives 1 three times and 1.0000000000000002 twice: blocks of one k, not told apart
+    (["--k-min", "1", "--k-max", "1.0000000000000002", "-n", "5"],
+     "-n 5 values of k log-spaced from --k-min = 1 to --k-max = 1.0000000000000002 are only 2 "
+     "distinct numbers"),
+    (["--k-min", "1", "--k-max", "2", "-n", "1000001"], "from 1 to 1000000"),
+    (["--k-min", "1", "--k-max", "2", "-n", "\uff13"], "is not an integer in ASCII digits"),
+    (["--k-min", "1", "--k-max", "2", "-n", "3", "--jobs", "257"], "--jobs"),
 ])
 def test_sweep_command_rejects_bad_input(tmp_path, capsys, argv, message):
     with pytest.raises(SystemExit) as exit_:

@@ -181,12 +181,11 @@ def classify_grid(k, n: int = 400) -> RegimeGrid:
     params = Parameters.coerce(k)
     n = check_resolution(n)
     axis = np.linspace(0.0, _HALF_PI, n + 1)
-    G, D = np.meshgrid(axis, axis)
-    inside = D <= G
-    category = np.full(G.shape, OUTSIDE, dtype=np.int8)
-    upsilon = np.full(G.shape, np.nan)
-    category[inside] = _categories(G[inside], D[inside], params)
-    upsilon[inside] = solve_equilibrium(G[inside], D[inside], params).upsilon
+    category = np.full((n + 1, n + 1), OUTSIDE, dtype=np.int8)
+    upsilon = np.full((n + 1, n + 1), np.nan)
+    for rows, gamma, delta, inside in _row_blocks(axis):
+        category[rows][inside] = _categories(gamma, delta, params)
+        upsilon[rows][inside] = solve_equilibrium(gamma, delta, params).upsilon
     return RegimeGrid(params.k, _readonly(axis.copy()), _readonly(axis.copy()),
                       _readonly(category), _readonly(upsilon))
 
@@ -210,15 +209,32 @@ def classify_cells(k, n: int) -> np.ndarray:
     params = Parameters.coerce(k)
     n = check_resolution(n)
     centres = (np.arange(n) + 0.5) * (_HALF_PI / n)
-    G, D = np.meshgrid(centres, centres)
-    inside = D <= G
-    codes = np.full(G.shape, OUTSIDE, dtype=np.int8)
-    codes[inside] = _categories(G[inside], D[inside], params)
+    codes = np.full((n, n), OUTSIDE, dtype=np.int8)
+    for rows, gamma, delta, inside in _row_blocks(centres):
+        codes[rows][inside] = _categories(gamma, delta, params)
     return codes
 
 
-def check_resolution(n) -> int:
-    """Return the grid resolution ``n`` as an int, or raise if it is not in ``2 <= n <= 20000``.
+#: points solved at once by the grids: the solver's temporaries take about 300 bytes per point
+_BLOCK = 1 << 17
+
+
+def _row_blocks(axis: np.ndarray):
+    """Blocks of rows ``delta = axis[rows]`` of the grid ``axis x axis``, about
+    :data:`_BLOCK` nodes each: ``(rows, gamma, delta, inside)`` with the nodes inside the
+    domain (``delta <= gamma``) as flat arrays, row by row, and where they are in the block
+    (memory stays bounded at any resolution; each node is solved on its own)."""
+    step = max(1, _BLOCK // axis.size)
+    for start in range(0, axis.size, step):
+        rows = slice(start, start + step)
+        D, G = np.meshgrid(axis[rows], axis, indexing="ij")
+        inside = D <= G
+        yield rows, G[inside], D[inside], inside
+
+
+def check_resolution(n, largest: int | None = None) -> int:
+    """Return the grid resolution ``n`` as an int, or raise if it is not in ``2 <= n <= 20000``
+    (or ``<= largest``).
 
     Raises
     ------
@@ -228,6 +244,7 @@ def check_resolution(n) -> int:
         If ``n`` is outside its allowed range.
     """
     lo, hi = _RESOLUTION_RANGE
+    hi = hi if largest is None else largest
     if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
         raise TypeError(f"grid resolution n must be an integer, got {n!r}")
     if not lo <= n <= hi:

@@ -162,16 +162,22 @@ def _argument(check, value: float, text: str) -> float:
         raise argparse.ArgumentTypeError(message) from None
 
 
-def positive_integer(name: str):
-    """Argument type of an integer >= 1; messages name it ``name``."""
+def positive_integer(name: str, maximum: int | None = None):
+    """Argument type of an integer ``>= 1`` (and ``<= maximum``), written in ASCII digits;
+    messages name it ``name``."""
+    allowed = "an integer >= 1" if maximum is None else f"an integer from 1 to {maximum}"
+
     def parse(text: str) -> int:
         try:
-            value = int(text)
+            value = int(text) if text.isascii() else None  # not '３' or '٣', which int() reads
         except ValueError:
-            value = 0
-        if value < 1:
+            value = None
+        if value is None:
+            raise argparse.ArgumentTypeError(f"{name} = {text!r} is not an integer in ASCII "
+                                             f"digits; allowed range: {allowed}")
+        if value < 1 or (maximum is not None and value > maximum):
             raise argparse.ArgumentTypeError(f"{name} = {text!r} is outside the allowed range: "
-                                             "an integer >= 1")
+                                             + allowed)
         return value
 
     parse.__name__ = name

@@ -26,7 +26,9 @@ __all__ = ["add_parser", "run"]
 
 log = logging.getLogger(__name__)
 
-_RESOLUTION_RANGE = (2, 20000)
+#: the cells of a map along each axis (the most: groove_model.plots.regime_map.MAP_RESOLUTION_MAX,
+#: which this module does not import at start-up; a test checks the two agree)
+_RESOLUTION_RANGE = (2, 5000)
 
 _EXAMPLES = """examples:
   groove map -k 10 -o map_k10.png --svg        # PNG and SVG of the regime map for k = 10

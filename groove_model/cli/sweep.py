@@ -36,6 +36,12 @@ fails (exit code 1, the failures on stderr). A progress bar is shown on a termin
 """
 
 
+#: most k of one sweep: about 8 hours of one process at 30 ms per k
+MAX_K_VALUES = 1_000_000
+#: most worker processes
+MAX_JOBS = 256
+
+
 def add_parser(subparsers):
     """Register ``groove sweep``; returns its parser."""
     p = add_command(
@@ -49,10 +55,10 @@ def add_parser(subparsers):
                    help="smallest k (1e-4 <= k <= 1e6)")
     p.add_argument("--k-max", required=True, type=traced_friction,
                    help="largest k (>= --k-min, <= 1e6)")
-    p.add_argument("-n", required=True, type=positive_integer("-n"),
-                   help="number of k values (>= 1)")
-    p.add_argument("--jobs", type=positive_integer("--jobs"), default=1,
-                   help="worker processes (default 1: in this process)")
+    p.add_argument("-n", required=True, type=positive_integer("-n", MAX_K_VALUES),
+                   help=f"number of k values (1 to {MAX_K_VALUES:,})")
+    p.add_argument("--jobs", type=positive_integer("--jobs", MAX_JOBS), default=1,
+                   help=f"worker processes (default 1: in this process; at most {MAX_JOBS})")
     p.add_argument("--out", required=True, help="output directory (created if needed)")
     p.add_argument("--certify", action="store_true",
                    help="prove every boundary in ball arithmetic (needs python-flint); a k "
@@ -150,18 +156,26 @@ def run(args) -> int:
     from concurrent.futures.process import BrokenProcessPool
 
     from ..io.sweep import write_sweep  # pandas (see above)
+    from ..model.parameters import k_text  # numpy (see above)
     from ..tracing import sweep_results  # the engine (see above)
 
     if not args.k_min <= args.k_max:
-        raise UsageError(f"--k-min = {args.k_min!r} must be <= --k-max = {args.k_max!r}")
+        raise UsageError(f"--k-min = {k_text(args.k_min)} must be <= --k-max = "
+                         f"{k_text(args.k_max)}")
     if args.n == 1 and args.k_min != args.k_max:
         raise UsageError(f"-n 1 traces one k, but --k-min = {args.k_min!r} and --k-max = "
                          f"{args.k_max!r} differ: give -n >= 2, or the same k twice")
     if args.n > 1 and args.k_min == args.k_max:
         raise UsageError(f"-n {args.n} values of k from --k-min = {args.k_min!r} to --k-max = "
                          f"{args.k_max!r} would all be that one k: give -n 1, or a wider range")
-    out = output_directory(args.out)
     ks = sweep_values(args.k_min, args.k_max, args.n)
+    distinct = len(set(ks))
+    if distinct < len(ks):
+        # rows are told apart by their k alone: two blocks of one k would read as one
+        raise UsageError(f"-n {args.n} values of k log-spaced from --k-min = {k_text(args.k_min)} "
+                         f"to --k-max = {k_text(args.k_max)} are only {distinct} distinct "
+                         "numbers: give a smaller -n or a wider range")
+    out = output_directory(args.out)
     compliance = compliance_from(args)
     refuse_blocked(outputs(args))
     if args.certify:
@@ -180,11 +194,11 @@ def run(args) -> int:
         return EXIT_FAILED
     for result in failed:
         for failure in result.failures:
-            print(f"groove sweep: error: k = {result.k!r}: {failure}", file=sys.stderr)
+            print(f"groove sweep: error: k = {k_text(result.k)}: {failure}", file=sys.stderr)
     if failed:
         print(f"groove sweep: nothing written: {len(failed)} of {len(ks)} k failed (see above)",
               file=sys.stderr)
         return EXIT_FAILED
-    print(f"{len(ks)} k from {args.k_min:g} to {args.k_max:g}: "
+    print(f"{len(ks)} k from {k_text(args.k_min)} to {k_text(args.k_max)}: "
           f"{', '.join(str(p) for p in paths)}")
     return EXIT_OK

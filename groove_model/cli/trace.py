@@ -114,7 +114,7 @@ def run(args) -> int:
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
     from ..io.atomic import WriteError
-    from ..io.export import write_boundary_set
+    from ..io.export import boundary_file_names, write_boundary_set
     from ..model.parameters import Parameters, k_text
     from ..tracing import trace_boundaries
 
@@ -147,6 +147,7 @@ def run(args) -> int:
             for failure in result.failures:
                 print(f"groove trace: error: k = {k_text(k)}: {failure}", file=sys.stderr)
             print(f"groove trace: k = {k_text(k)}: nothing written for this k", file=sys.stderr)
+            _note_earlier(out / f for f in boundary_file_names(k, suffix))
             continue
         try:
             paths = write_boundary_set(result, out, suffix)
@@ -154,6 +155,7 @@ def run(args) -> int:
             failed.append(k)
             print(f"groove trace: error: k = {k_text(k)}: {exc.strerror}; nothing written for "
                   "this k", file=sys.stderr)
+            _note_earlier(out / f for f in boundary_file_names(k, suffix))
             continue
         sets.append(result)
         print(f"k = {k_text(result.k)}, c = {compliance.ratio!r}: "
@@ -168,10 +170,7 @@ def run(args) -> int:
                       file=sys.stdout if curve.certified else sys.stderr)
     if failed or args.no_figure:
         # an overlay of this name from an earlier run would now sit beside newer CSVs
-        for path in (out / f"{name}.{fmt}" for fmt in ("png", "svg")):
-            if path.is_file():
-                print(f"groove trace: note: {path} is from an earlier run (not redrawn)",
-                      file=sys.stderr)
+        _note_earlier((out / f"{name}.{fmt}" for fmt in ("png", "svg")), "not redrawn")
     if failed:
         print(f"groove trace: no overlay: k = {', '.join(map(k_text, failed))} failed or could "
               "not be written (see above)", file=sys.stderr)
@@ -188,6 +187,14 @@ def run(args) -> int:
               file=sys.stderr)
         return EXIT_FAILED
     return EXIT_OK
+
+
+def _note_earlier(paths, what: str = "not rewritten") -> None:
+    """Say which of ``paths`` exist from an earlier run: they sit beside this run's files and
+    look as current."""
+    for path in paths:
+        if path.is_file():
+            print(f"groove trace: note: {path} is from an earlier run ({what})", file=sys.stderr)
 
 
 def _note_repeated(ks: list) -> None:
