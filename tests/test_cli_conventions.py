@@ -486,3 +486,22 @@ def test_reproduce_checks_every_steps_files_before_the_first_step(blocked, tmp_p
     assert exit_info.value.code == 2
     assert f"cannot write {tmp_path / blocked}: a directory is in its place" in \
         capsys.readouterr().err
+
+
+def test_an_empty_out_is_refused_not_taken_as_the_current_directory(tmp_path, capsys,
+                                                                     monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(SystemExit) as info:
+        main(["trace", "-k", "1", "--out", ""])
+    assert info.value.code == 2
+    assert "--out '' is empty: give a directory ('.' for this one)" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_empty_csv_is_named_as_empty(tmp_path, capsys):
+    empty = tmp_path / "boundaries_k1.csv"
+    empty.write_text("")
+    with pytest.raises(SystemExit) as info:
+        main(["plot", str(empty), "-o", str(tmp_path / "x.png")])
+    assert info.value.code == 2
+    assert f"{empty}: not a boundaries CSV (the file is empty)" in capsys.readouterr().err

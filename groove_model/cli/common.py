@@ -292,6 +292,8 @@ def output_directory(text: str) -> Path:
         If it exists and is not a directory, or it (or the directory it would be created in)
         is not writable: checked before anything is computed.
     """
+    if not text.strip():
+        raise UsageError(f"--out {text!r} is empty: give a directory ('.' for this one)")
     out = Path(text)
     _refuse_dangling_link("--out", out, out)
     if out.exists() and not out.is_dir():

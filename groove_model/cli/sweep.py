@@ -30,9 +30,11 @@ _EXAMPLES = """examples:
   groove sweep --k-min 0.5 --k-max 2 -n 11 --out out/ --keep-unphysical
 
 writes sweep_boundaries.csv (the rows of every k, with a k column, as in boundaries_k*.csv)
-and sweep_special_points.csv (the special points of every k) into --out; the bytes do not
-depend on --jobs. The k are log-spaced from --k-min to --k-max. Nothing is written if any k
-fails (exit code 1, the failures on stderr). A progress bar is shown on a terminal only.
+and sweep_special_points.csv (the special points of every k) into --out; with another
+compliance than the paper's, the names end in it (sweep_boundaries_nu0.3.csv for --poisson 0.3,
+_c0.8 for --compliance 0.8). The bytes do not depend on --jobs. The k are log-spaced from
+--k-min to --k-max. Nothing is written if any k fails (exit code 1, the failures on stderr).
+A progress bar is shown on a terminal only.
 """
 
 

@@ -91,7 +91,9 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     try:
         frame = pd.read_csv(path, keep_default_na=False, na_values={"": []},
                             dtype={"point": str, "boundary": str, "certified": str})
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+    except pd.errors.EmptyDataError:
+        raise ValueError(f"{path}: not a boundaries CSV (the file is empty)") from None
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: not a boundaries CSV ({exc})") from None
     if "certified" not in frame.columns:
         frame["certified"] = ""  # written before certification existed: not certified

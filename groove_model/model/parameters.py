@@ -381,10 +381,11 @@ def check_domain(gamma, delta):
     gamma_a, delta_a = np.broadcast_arrays(gamma_a, delta_a)
     slack = 4.0 * np.finfo(float).eps
     bad_delta = delta_a > gamma_a * (1.0 + slack) + 4.0 * _SMALLEST_SUBNORMAL
+    gamma_range = f"0 <= gamma <= pi/2 = {HALF_PI!r} (to 4 eps relative, then taken as pi/2)"
     checks = (
-        (~np.isfinite(gamma_a), "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
-        (gamma_a > HALF_PI * (1.0 + slack), "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
-        (gamma_a < 0.0, "gamma", "0 <= gamma <= pi/2 = 1.5707963..."),
+        (~np.isfinite(gamma_a), "gamma", gamma_range),
+        (gamma_a > HALF_PI * (1.0 + slack), "gamma", gamma_range),
+        (gamma_a < 0.0, "gamma", gamma_range),
         (~np.isfinite(delta_a), "delta", "0 <= delta <= gamma"),
         (delta_a < 0.0, "delta", "0 <= delta <= gamma"),
         (bad_delta, "delta", "0 <= delta <= gamma"),
