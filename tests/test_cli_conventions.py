@@ -505,3 +505,23 @@ def test_an_empty_csv_is_named_as_empty(tmp_path, capsys):
         main(["plot", str(empty), "-o", str(tmp_path / "x.png")])
     assert info.value.code == 2
     assert f"{empty}: not a boundaries CSV (the file is empty)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("failure", ["code", "exception"])
+def test_reproduce_names_the_step_that_failed_and_those_not_run(failure, tmp_path, monkeypatch,
+                                                                capsys):
+    def broken(args):
+        if failure == "code":
+            return 1
+        raise ArithmeticError("the computation failed")
+
+    monkeypatch.setattr("groove_model.cli.trace.run", broken)
+    assert main(["reproduce", "--out", str(tmp_path)]) == 1
+    err = capsys.readouterr().err
+    assert (f"groove reproduce: stopped at step 1 of 6 (groove trace -k 1 -k 10 --out "
+            f"{tmp_path}); not run: groove map -k 1 -o {tmp_path / 'map_k1.png'} --svg; ") in err
+    last = f"groove audit --trace --out {tmp_path}"
+    if failure == "code":
+        assert err.rstrip().endswith(last)
+    else:  # the step's own error follows, from groove's entry point
+        assert err.rstrip().endswith(f"{last}\ngroove reproduce: error: the computation failed")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+import sys
 from pathlib import Path
 
 from .common import EXIT_OK, add_command, output_directory, refuse_blocked
@@ -60,9 +61,22 @@ def run(args) -> int:
             output_directory(step.out)
     refuse_blocked(path for step in parsed for path in step.outputs(step))
     out.mkdir(parents=True, exist_ok=True)
-    for argv, step in zip(steps(out), parsed, strict=True):
-        log.info("groove %s", " ".join(argv))
-        code = step.run(step)
+    lines = [" ".join(["groove", *argv]) for argv in steps(out)]
+    for i, step in enumerate(parsed):
+        log.info("%s", lines[i])
+        try:
+            code = step.run(step)
+        except BaseException:
+            _say_stopped(lines, i)  # the error itself follows, from groove's entry point
+            raise
         if code != EXIT_OK:
+            _say_stopped(lines, i)
             return code
     return EXIT_OK
+
+
+def _say_stopped(lines: list[str], i: int) -> None:
+    """Which step failed and which did not run: the results of those are not regenerated."""
+    rest = "; ".join(lines[i + 1:]) or "none"
+    print(f"groove reproduce: stopped at step {i + 1} of {len(lines)} ({lines[i]}); not run: "
+          f"{rest}", file=sys.stderr)
