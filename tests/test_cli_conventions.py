@@ -525,3 +525,24 @@ def test_reproduce_names_the_step_that_failed_and_those_not_run(failure, tmp_pat
         assert err.rstrip().endswith(last)
     else:  # the step's own error follows, from groove's entry point
         assert err.rstrip().endswith(f"{last}\ngroove reproduce: error: the computation failed")
+
+
+def test_ctrl_c_in_a_trace_of_several_k_says_which_were_written(tmp_path, monkeypatch, capsys):
+    from groove_model import tracing
+
+    real = tracing.trace_boundaries
+
+    def until_three(k, **kwargs):
+        if k.k == 3.0:
+            raise KeyboardInterrupt
+        return real(k, **kwargs)
+
+    monkeypatch.setattr(tracing, "trace_boundaries", until_three)
+    out = tmp_path / "out"
+    assert main(["trace", "-k", "1", "2", "3", "4", "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert err.endswith("groove trace: CSVs written before the interrupt: k = 1, 2; no overlay\n"
+                        "groove trace: interrupted\n")
+    assert sorted(p.name for p in out.iterdir()) == [
+        "boundaries_k1.csv", "boundaries_k2.csv", "special_points_k1.csv",
+        "special_points_k2.csv"]

@@ -113,10 +113,7 @@ def run(args) -> int:
     proven, its files written all the same), else 0."""
     # Imported here, not at the top: the tracer, the CSV files and the figure load the engine,
     # pandas and matplotlib, which `groove --help` and `groove solve` should not wait for.
-    from ..io.atomic import WriteError
-    from ..io.export import boundary_file_names, write_boundary_set
-    from ..model.parameters import Parameters, k_text
-    from ..tracing import trace_boundaries
+    from ..model.parameters import k_text
 
     out = output_directory(args.out)
     if args.figure is not None and (args.figure in ("", ".", "..")
@@ -137,7 +134,46 @@ def run(args) -> int:
     name = _overlay(args)
     refuse_blocked(outputs(args))
     _note_repeated(args.ks)
-    sets, failed = [], []
+    sets: list = []
+    try:
+        failed = _trace_each(args, out, compliance, suffix, sets)
+    except KeyboardInterrupt:
+        # Ctrl-C: what was written is whole (and stays); say which k it holds
+        done = ", ".join(k_text(b.k) for b in sets) or "none"
+        print(f"groove trace: CSVs written before the interrupt: k = {done}; no overlay",
+              file=sys.stderr)
+        raise
+    if failed or args.no_figure:
+        # an overlay of this name from an earlier run would now sit beside newer CSVs
+        _note_earlier((out / f"{name}.{fmt}" for fmt in ("png", "svg")), "not redrawn")
+    if failed:
+        print(f"groove trace: no overlay: k = {', '.join(map(k_text, failed))} failed or could "
+              "not be written (see above)", file=sys.stderr)
+        return EXIT_FAILED
+    if not args.no_figure:
+        # Imported here: matplotlib is needed for the figure only (loaded by require_plotting).
+        from ..plots.overlay import save_overlay
+
+        for path in save_overlay(sets, out / name, degrees=args.deg):
+            print(f"figure: {path}")
+    unproven = [c.name for b in sets for c in b.curves.values() if c.certified is False]
+    if unproven:
+        print(f"groove trace: error: not proven: {', '.join(unproven)} (see above)",
+              file=sys.stderr)
+        return EXIT_FAILED
+    return EXIT_OK
+
+
+def _trace_each(args, out, compliance, suffix: str, sets: list) -> list:
+    """Trace and write each ``k`` of ``args`` in turn; append the written sets to ``sets``
+    (so that an interrupted run can say which) and return the ``k`` that failed."""
+    # Imported here, not at the top: see run().
+    from ..io.atomic import WriteError
+    from ..io.export import boundary_file_names, write_boundary_set
+    from ..model.parameters import Parameters, k_text
+    from ..tracing import trace_boundaries
+
+    failed = []
     for k in dict.fromkeys(args.ks):
         log.info("tracing k = %s", k_text(k))
         result = trace_boundaries(Parameters(k, compliance),
@@ -168,25 +204,7 @@ def run(args) -> int:
             if curve.certificate is not None:
                 print(f"  {curve.name}: {certificate_line(curve.certificate)}",
                       file=sys.stdout if curve.certified else sys.stderr)
-    if failed or args.no_figure:
-        # an overlay of this name from an earlier run would now sit beside newer CSVs
-        _note_earlier((out / f"{name}.{fmt}" for fmt in ("png", "svg")), "not redrawn")
-    if failed:
-        print(f"groove trace: no overlay: k = {', '.join(map(k_text, failed))} failed or could "
-              "not be written (see above)", file=sys.stderr)
-        return EXIT_FAILED
-    if not args.no_figure:
-        # Imported here: matplotlib is needed for the figure only (loaded by require_plotting).
-        from ..plots.overlay import save_overlay
-
-        for path in save_overlay(sets, out / name, degrees=args.deg):
-            print(f"figure: {path}")
-    unproven = [c.name for b in sets for c in b.curves.values() if c.certified is False]
-    if unproven:
-        print(f"groove trace: error: not proven: {', '.join(unproven)} (see above)",
-              file=sys.stderr)
-        return EXIT_FAILED
-    return EXIT_OK
+    return failed
 
 
 def _note_earlier(paths, what: str = "not rewritten") -> None:
