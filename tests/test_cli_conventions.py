@@ -368,6 +368,12 @@ def test_a_directory_given_as_the_figure_is_refused(tmp_path, capsys):
         main(["map", "-k", "1", "-o", str(tmp_path / "d.png"), "--no-boundaries"])
     assert exit_info.value.code == 2
     assert "is a directory; give a file name" in capsys.readouterr().err
+    # one with no suffix is named as a directory too, not as a file of format '(none)'
+    with pytest.raises(SystemExit):
+        main(["plot", str(Path(__file__).resolve().parents[1] / "results" / "boundaries_k1.csv"),
+              "-o", str(tmp_path)])
+    assert (f"-o {tmp_path} is a directory; give a file name such as {tmp_path / 'figure.png'}"
+            in capsys.readouterr().err)
 
 
 @pytest.mark.parametrize("argv", [

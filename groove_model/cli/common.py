@@ -371,12 +371,12 @@ def figure_target(text: str) -> tuple[Path, str]:
     """
     target = Path(text)
     fmt = target.suffix.lstrip(".").lower()
+    if target.is_dir():
+        example = target / ("figure." + (fmt if fmt in FIGURE_FORMATS else "png"))
+        raise UsageError(f"-o {target} is a directory; give a file name such as {example}")
     if fmt not in FIGURE_FORMATS:
         raise UsageError(f"output format {target.suffix or '(none)'!r} of {target} is not one "
                          "of .png, .svg, .pdf")
-    if target.is_dir():
-        raise UsageError(f"-o {target} is a directory; give a file name such as "
-                         f"{target / ('figure' + target.suffix)}")
     _refuse_dangling_link("-o", target.parent, target)
     existing = target.parent if target.parent.exists() else _existing_ancestor(target.parent)
     if existing is not None and not existing.is_dir():
