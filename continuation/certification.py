@@ -27,9 +27,10 @@ those met along the curve from its first point to its last: a zero at the seam i
 lists) each zero twice.
 
 Anything else fails with the first segment or point where a test failed and why; a curve is
-never reported proven on evidence that is only numerical, given that ``jacobian`` is the
-derivative of ``residual`` (checked in floats at the points). Branch points are not certified,
-and no neighbourhood of a singular end is cut out: a curve ending at a singular point fails.
+never reported proven on evidence that is only numerical (``H'`` over the boxes is the
+residual's own derivative; the fold functions' derivatives take ``jacobian`` to be that, as
+checked at the points). Branch points are not certified, and no neighbourhood of a singular
+end is cut out: a curve ending at a singular point fails.
 """
 
 from __future__ import annotations
@@ -38,13 +39,12 @@ import dataclasses
 import math
 import time
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
 from .certificate import Certificate, CertifyOptions, Check, Exclusion, ProvenPoint
 from .certify_input import not_certifiable
-from .krawczyk import Failure, Frame, kernel, solve_piece, solve_slice
+from .krawczyk import Failure, Frame, derivative, kernel, solve_piece, solve_slice
 from .numbers import balls
 from .refine import Points
 from .result import Curve, SpecialKind, Status
@@ -177,9 +177,8 @@ class _Run:
 
     def node_jacobian(self, i: int):
         """``H'`` over the box of point ``i``'s zero (computed once, when needed)."""
-        if i not in self._node_jacobians:
-            self._node_jacobians[i] = self.problem.jacobian(self.nodes[i].box, self.B)
-        return self._node_jacobians[i]
+        return self._node_jacobians.get(i) or self._node_jacobians.setdefault(
+            i, derivative(self.problem, self.nodes[i].box, self.B))
 
     def inside(self, box, s: int, lo: float = -math.inf, hi: float = math.inf) -> bool:
         """Whether the ball vector ``box`` lies in the tube of segment ``s`` (its interior),
@@ -373,7 +372,7 @@ class _Run:
             return
         if not any(lo <= i <= hi for i in keep):
             box = self._hull(lo, hi)
-            J = self.problem.jacobian(box, self.B) if function.event is None else None
+            J = derivative(self.problem, box, self.B) if function.event is None else None
             value = function.value(box, J, self.B)
             sign = 1 if value > 0.0 else -1 if value < 0.0 else 0
             if sign:
@@ -412,7 +411,7 @@ class _Run:
     def _may_vanish(self, function: Function, centre, radius: float) -> bool:
         """Whether the enclosure of ``phi`` over the box ``|x - centre| <= radius`` holds 0."""
         box = [self.B.arb(float(c), radius) for c in centre]
-        J = self.problem.jacobian(box, self.B) if function.event is None else None
+        J = derivative(self.problem, box, self.B) if function.event is None else None
         value = function.value(box, J, self.B)
         return not (value > 0.0 or value < 0.0)
 
@@ -519,8 +518,8 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     problem : Problem or object
         ``residual(x, numbers)`` (n values) and ``jacobian(x, numbers)`` (n rows of n + 1),
         written over a numbers namespace (:mod:`continuation.numbers`); called with floats,
-        balls and jets. The proof takes ``jacobian`` to be the derivative of ``residual``
-        (checked at the points only: :func:`~continuation.certify_input.jacobian_mismatch`).
+        balls and jets. The fold functions' derivatives take ``jacobian`` to be that of
+        ``residual`` (checked at the points: :mod:`continuation.certify_input`).
     events : sequence of Event
         The run's events, in its order (positions as in ``SpecialPoint.event``), with
         functions ``function(x, numbers)``; an event may be replaced by one with the same
@@ -540,6 +539,8 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     ------
     ImportError
         If python-flint is not installed (the message names the extra to install).
+    TypeError
+        If a function is not written over the numbers namespace (it fails in floats or jets).
     ValueError
         If the problem has no Jacobian, a fold coordinate is out of range, or the curve
         reports an event that is not passed.
@@ -548,7 +549,7 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
     B = numbers or balls()
     options = options or CertifyOptions()
     if fold_coordinates is None:
-        fold_coordinates = curve.options.fold_coordinates if curve.options is not None else ()
+        fold_coordinates = () if curve.options is None else curve.options.fold_coordinates
     reason = not_certifiable(curve, problem, events, fold_coordinates)
     failure = None if reason is None else _Failure(Check.INPUT, reason[0], point=reason[1],
                                                    caller=True)
@@ -563,24 +564,22 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
             failure = run.zeros(function)
             if failure is not None:
                 break
-    proven = run.proven
     # in the caller's indices (a zero at an inserted point, unreported, crossing against its
     # event's direction: the caller's point before it)
     proven = [dataclasses.replace(p, index=points.segment_of(p.index)
                                   if points.origin[p.index] is None else points.origin[p.index])
-              for p in proven]
+              for p in run.proven]
     pieces = sum(len(s.pieces) for s in run.segments)
     radius = max((p.radius for s in run.segments for p in s.pieces), default=0.0)
-    common: dict[str, Any] = dict(
+    common: dict = dict(
         segments=len(run.segments), pieces=pieces, max_radius=radius,
         node_distance=run.node_distance, special_points=tuple(proven),
         start_sides=tuple(run.start_sides.get(j, 0) for j in range(len(events))),
         inserted_points=points.inserted, seconds=time.perf_counter() - start)
-    note = f" (points {', '.join(map(str, merged))} merged with the point before: the same " \
-        "point to rounding)" if merged else ""
-    if points.inserted:
-        note += f" ({points.inserted} point(s) of the arc inserted where a segment's tube " \
-            "was not proven)"
+    note = (f" (points {', '.join(map(str, merged))} merged with the point before: the same "
+            "point to rounding)" if merged else "") + (
+        f" ({points.inserted} point(s) of the arc inserted where a segment's tube was not "
+        "proven)" if points.inserted else "")
     if failure is not None:
         point = failure.point if failure.caller or failure.point is None else \
             points.origin[failure.point]

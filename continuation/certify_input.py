@@ -18,12 +18,34 @@ JACOBIAN_TOL = 1e-8
 
 
 def _probe(name: str, function, x) -> None:
-    """Call ``function(x, FLOATS)`` once: a ``TypeError`` that says what to write if it fails."""
+    """Call ``function`` once in floats and once in jets (the proof's derivatives): a
+    ``TypeError`` that says what to write if it fails (``math.sin`` of a jet fails, where of a
+    ball it would quietly take the ball's midpoint)."""
     try:
         function(x, FLOATS)
-    except TypeError as exc:
+        function([Jet(v, 1.0) for v in x], jets(FLOATS))
+    except (TypeError, AttributeError) as exc:
         raise TypeError(f"{name} must take (x, numbers) and be written over the numbers "
-                        f"namespace (continuation.numbers) to be certified: {exc}") from None
+                        f"namespace (continuation.numbers: m.sin, not math.sin or np.sin) to "
+                        f"be certified: {exc}") from None
+
+
+def _inconsistent(curve: Curve) -> tuple | None:
+    """Where the curve's arrays disagree with each other (a curve edited after its run): the
+    reason and the point, or ``None``. A special point is a row of the curve, bit for bit."""
+    m = len(curve.x)
+    if curve.x.ndim != 2 or curve.tangents.shape != curve.x.shape or curve.s.shape != (m,):
+        return (f"its arrays disagree in shape: x {curve.x.shape}, tangents "
+                f"{curve.tangents.shape}, s {curve.s.shape}", None)
+    for p in curve.special_points:
+        if not 0 <= p.index < m:
+            return f"special point {p.name} has index {p.index}, outside [0, {m - 1}]", None
+        row = p.index
+        if not (np.array_equal(p.x, curve.x[row]) and p.s == curve.s[row]
+                and (p.tangent is None or np.array_equal(p.tangent, curve.tangents[row]))):
+            return (f"special point {p.name} is not point {row} of the curve (its x, s or "
+                    "tangent differ from that row's)", row)
+    return None
 
 
 def jacobian_mismatch(curve: Curve, problem) -> tuple | None:
@@ -79,6 +101,9 @@ def not_certifiable(curve: Curve, problem, events, fold_coordinates) -> tuple | 
                          f"{len(events)} event(s): pass every event of the run, in its order")
     if len(curve) < 2:
         return f"the curve has {len(curve)} point(s); at least two are needed", None
+    broken = _inconsistent(curve)
+    if broken is not None:
+        return broken
     x0 = [float(v) for v in curve.x[0]]
     _probe("problem.residual", problem.residual, x0)
     _probe("problem.jacobian", problem.jacobian, x0)

@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .gradients import Gradient, gradients
 from .numbers import FLOATS, Jet, jets
 
 __all__ = ["Failure", "Frame", "Piece", "Slice", "determinant", "kernel", "inverse",
@@ -301,6 +302,37 @@ def _needed(steps, bounds, floor: float) -> list | None:
     return radii if all(r > 0.0 and math.isfinite(r) for r in radii) else None
 
 
+def derivative(problem, x, B) -> list:
+    """``H'`` over the ball vector ``x``: rows of ``n + 1`` balls, the residual's derivatives
+    by forward differentiation in balls (:mod:`continuation.gradients`, all columns in one
+    evaluation; column by column with :func:`continuation.numbers.jets` where a formula uses
+    a function gradients lack).
+
+    Not ``problem.jacobian``: the proof rests on the residual alone. A Jacobian that is right
+    in floats at the curve's points can be wrong over a box (a ``math.cos`` of a ball is the
+    cosine of its midpoint; a formula simplified with ``H = 0`` is right on the curve only),
+    and Krawczyk's operator with it can prove a unique arc where several lie.
+    """
+    zero, one = B.number(0.0), B.number(1.0)
+    n1 = len(x)
+    G = gradients(B)
+    try:
+        # every column in one evaluation (Gradient), where the formula allows
+        units = [tuple(one if c == j else zero for c in range(n1)) for j in range(n1)]
+        row = problem.residual([Gradient(v, units[j]) for j, v in enumerate(x)], G)
+        return [list(r.d) if type(r) is Gradient else [zero] * n1 for r in row]
+    except AttributeError as exc:
+        if getattr(exc, "obj", None) is not G:
+            raise
+        # a function of the namespace that gradients lack (analytic_error): column by column
+    J1 = jets(B)
+    columns = []
+    for j in range(n1):
+        row = problem.residual([Jet(v, one if c == j else zero) for c, v in enumerate(x)], J1)
+        columns.append([r.d if type(r) is Jet else zero for r in row])
+    return [list(entries) for entries in zip(*columns, strict=True)]
+
+
 def _preconditioner(problem, frame, tau: float):
     """``A ~ (H'(x) N)^{-1}`` at the centerline point ``tau`` (floats), or ``None``."""
     x = frame.point(tau, frame._c(tau))
@@ -320,7 +352,7 @@ def _residual_form(problem, frame, B, lo: float, hi: float):
     T, t0 = B.arb(mid, half), B.number(mid)
     p0 = frame.point(t0, frame._c(t0))
     H0 = problem.residual(p0, B)
-    slope = _matvec(problem.jacobian(p0, B), frame.slope(t0))
+    slope = _matvec(derivative(problem, p0, B), frame.slope(t0))
     over = problem.residual(frame.centerline_jets(T), jets(B))
     offset = B.error(half)
     square = B.arb(0.5 * half * half, 0.5 * half * half) * (1.0 + 1e-12)
@@ -354,7 +386,7 @@ def solve_piece(problem, frame, B, lo: float, hi: float, max_radius: float,
             return Failure(f"the tube would need a radius of {max(radii):.3g}, more than "
                            f"{max_radius:.3g} (Newton step of the residual {max(steps):.3g})")
         X = frame.tube_box(T, [B.error(r) for r in radii])
-        J = problem.jacobian(X, B)
+        J = derivative(problem, X, B)
         bounds = _contraction(frame, B, J, A)
         K = _image(AG, bounds, radii, B)
         if _inside(K, radii, B):

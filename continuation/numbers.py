@@ -7,8 +7,10 @@ may use
 * ``+ - * /`` between numbers and Python floats, unary ``-`` and ``**`` with a small integer
   (prefer ``x * x``: over balls python-flint's power is a looser enclosure, and NaN for a ball
   centred at 0, so a proof there fails);
-* comparisons (``a >= b``), which mean *certainly* (for a ball: for every value it holds);
-  for a branch between two formulas that are both exact where both apply;
+* comparisons (``a >= b``), which mean *certainly* (for a ball: for every value it holds),
+  so an ``if`` on one that a ball does not decide takes its ``else`` for every value: only
+  for a branch between two forms of one function, each valid wherever it may be taken (not
+  a ramp ``x if x > 0 else 0``, whose branches are different functions);
 * :func:`quotient` for a division whose denominator may vanish (elementwise over arrays,
   where an ``if`` on a comparison cannot branch);
 * ``m.sin``, ``m.cos``, ``m.sqrt`` (NaN, or a non-finite ball, below zero), ``m.sinc``
@@ -28,7 +30,8 @@ bounds, and no ``if`` on a comparison, see :func:`quotient`), :func:`balls` (pyt
 Arb midpoint-radius balls, every operation rounded outwards: the ``[certify]`` extra) and
 :func:`jets` (value, first and optionally second derivative along one direction, over floats
 or balls, by forward-mode differentiation; Griewank & Walther, *Evaluating Derivatives*,
-SIAM 2008, ch. 13).
+SIAM 2008, ch. 13). :func:`continuation.gradients.gradients` is a fifth: the value and every
+first derivative at once, in one evaluation (the vector mode of the same differentiation).
 """
 
 from __future__ import annotations
@@ -357,6 +360,10 @@ class Jet:
         return f"Jet({self.v!r}, {self.d!r}, {self.dd!r})"
 
 
+#: the radii of the complex polydiscs tried for Cauchy's estimates of a remainder's derivatives
+_WIDENINGS = (1e-3, 1e-2, 3e-2, 0.1)
+
+
 def _largest(values) -> float:
     """The largest of the floats (0 if none), NaN if one is (``max`` would drop it)."""
     return math.nan if any(math.isnan(v) for v in values) else max(values, default=0.0)
@@ -433,7 +440,7 @@ class _Jets:
                             if type(a) is Jet and a.dd is not None])
         best1 = 0.0 if speed == 0.0 else math.inf
         best2 = 0.0 if speed == 0.0 and curving == 0.0 else math.inf
-        for widen in (1e-3, 1e-2, 3e-2, 0.1) if not math.isfinite(best2) else ():
+        for widen in _WIDENINGS if not math.isfinite(best2) else ():
             # the polydisc of radius widen holds the discs |lam| <= widen / speed along dargs
             # and |mu| <= widen / curving along ddargs
             sup = bound(intervals, widen) * (1.0 + 1e-12)
@@ -453,3 +460,4 @@ class _Jets:
 def jets(base=FLOATS) -> _Jets:
     """The jet namespace over ``base`` (:data:`FLOATS` or :func:`balls`)."""
     return _Jets(base)
+

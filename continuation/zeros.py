@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .krawczyk import Failure, determinant, kernel, solve_piece, solve_slice, square_box
+from .krawczyk import Failure, derivative, determinant, kernel, solve_piece, solve_slice, square_box
 from .numbers import FLOATS, Jet, jets
 from .result import SpecialKind
 
@@ -152,7 +152,7 @@ def _leaf(function, piece, frame, problem, B, orientation: int, centred_slope: b
     mid = 0.5 * (piece.lo + piece.hi)
     thin = solve_slice(problem, frame, B, piece, mid, math.inf)  # the arc's point at tau_0
     centre = thin.box if not isinstance(thin, str) else frame.tube_box(B.number(mid), piece.y)
-    J = problem.jacobian(centre, B) if function.event is None else None
+    J = derivative(problem, centre, B) if function.event is None else None
     sigma = frame.speed(k)
     half = max(piece.hi - mid, mid - piece.lo) * (1.0 + 1e-15)
     s = _sign(function.value(centre, J, B) + slope / sigma * B.error(half))
@@ -162,7 +162,7 @@ def _leaf(function, piece, frame, problem, B, orientation: int, centred_slope: b
     # (D^2 phi [k, k] + D phi [D kappa [k]]) / (d tau / d lambda), over the piece (a slope
     # that is small at an end of the piece and grows along it: a curve leaving an event's
     # zero nearly tangentially)
-    J0 = J if J is not None else problem.jacobian(centre, B)
+    J0 = J if J is not None else derivative(problem, centre, B)
     slope0 = function.slope(centre, kernel(J0), problem, B)
     if not _sign(slope0):
         return None  # no sign at tau_0 itself: the centred form cannot have one

@@ -58,7 +58,8 @@ def test_rs_no_roll_started_outside_its_regime_is_proven_within_the_points_accur
     moved = _rows(engine, range(len(engine)))
     moved.x[0] -= shift * engine.tangents[0]
     moved = dataclasses.replace(moved, special_points=tuple(
-        p for p in moved.special_points
+        dataclasses.replace(p, x=moved.x[0].copy()) if p.index == 0 else p
+        for p in moved.special_points
         if not (p.index == 0 and p.kind is SpecialKind.EVENT and events[p.event] is d_L)))
     assert d_L.function(moved.x[0]) < 0.0  # the start outside the regime
     with monkeypatch.context() as patch:

@@ -2,6 +2,7 @@
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -346,7 +347,8 @@ def _with_events(curve, rows, event=0):
     template = trace(circles(), [1.0, 0.0], events=[Event("y", lambda x, numbers=FLOATS: x[1])])
     found = next(p for p in template.special_points if p.kind is SpecialKind.EVENT)
     return dataclasses.replace(curve, special_points=tuple(
-        dataclasses.replace(found, index=i, x=curve.x[i].copy(), event=event) for i in rows))
+        dataclasses.replace(found, index=i, x=curve.x[i].copy(), s=float(curve.s[i]),
+                            tangent=curve.tangents[i].copy(), event=event) for i in rows))
 
 
 MIDDLE = [-2e-5, -1e-5, -1e-9, 1e-9, 1e-5, 2e-5]
@@ -714,3 +716,91 @@ def test_a_jacobian_that_is_not_the_residuals_derivative_is_refused():
     assert "not the derivative of problem.residual" in cert.message
     right = Problem(lines.residual, lambda x, m=FLOATS: [[0.0 * x[0], 2.0 * x[1] - 0.01]])
     assert certify(curve, right, fold_coordinates=()).check is not Check.INPUT
+
+
+# --------------------------------------------------------------------------------------------
+# What the proof rests on: the residual alone (adversarial review of 2026-11-29)
+# --------------------------------------------------------------------------------------------
+
+#: sin(K (y - x)) / K: its zeros are the lines y = x + n pi/K, 3.1e-9 apart
+LINES_K = 1e9
+
+
+def _lines(jacobian):
+    return Problem(lambda x, m=FLOATS: [m.sin(LINES_K * (x[1] - x[0])) / LINES_K], jacobian)
+
+
+def test_a_jacobian_right_on_the_curve_only_proves_nothing():
+    # written with H = 0 (cos = 1 on the curve): it passes the check at the points, and
+    # Krawczyk's operator with it proved one arc in tubes that hold about five of the lines;
+    # the proof now takes H' over its boxes from the residual's own derivatives
+    simplified = lambda x, m=FLOATS: [[-1.0, 1.0]]  # noqa: E731
+    curve = trace(Problem(lambda x, m=FLOATS: [x[1] - x[0]], simplified), [0.0, 0.0],
+                  options=Options(max_steps=10))
+    cert = certify(curve, _lines(simplified), fold_coordinates=())
+    assert not cert.proven and cert.check is Check.TUBE, cert.message
+
+
+@pytest.mark.parametrize("where", ["jacobian", "event"])
+def test_math_functions_over_balls_are_refused_before_the_proof(where):
+    # math.cos of a ball is the cosine of its midpoint, a float: the Jacobian (or an event)
+    # written with it was right at the points and quietly not an enclosure over boxes
+    def jacobian(x, m=FLOATS):
+        c = (math.cos if where == "jacobian" else m.cos)(LINES_K * (x[1] - x[0]))
+        return [[-c, c]]
+
+    event = Event("sin y = 0.3", lambda x, m=FLOATS: (math.sin if where == "event" else m.sin)(
+        x[1]) - 0.3)
+    curve = trace(LINE, [0.0, 0.0], options=Options(max_steps=3))
+    name = "problem.jacobian" if where == "jacobian" else "the function of event 'sin y = 0.3'"
+    with pytest.raises(TypeError, match=f"{re.escape(name)} must take \\(x, numbers\\) and be "
+                                        "written over the numbers namespace .*m.sin, not "
+                                        "math.sin"):
+        certify(curve, _lines(jacobian), [event], fold_coordinates=())
+
+
+@pytest.mark.parametrize("edit, message", [
+    (lambda c: dataclasses.replace(c, tangents=c.tangents[:-1]),
+     "its arrays disagree in shape: x (37, 2), tangents (36, 2), s (37,)"),
+    (lambda c: dataclasses.replace(c, x=np.column_stack([c.x, c.x[:, 0]])),
+     "its arrays disagree in shape: x (37, 3), tangents (37, 2)"),
+    (lambda c: dataclasses.replace(c, special_points=(
+        dataclasses.replace(c.special_points[0], index=999),)),
+     "has index 999, outside [0, 36]"),
+    (lambda c: dataclasses.replace(c, special_points=(
+        dataclasses.replace(c.special_points[0], index=-1),)),
+     "has index -1, outside [0, 36]"),
+    (lambda c: dataclasses.replace(c, special_points=(
+        dataclasses.replace(c.special_points[0], x=c.special_points[0].x + 0.5),)),
+     "is not point"),
+])
+def test_a_curve_edited_after_its_run_is_refused_not_a_crash(edit, message):
+    # these raised IndexError or StopIteration; a special point moved away from its row was
+    # proven (only its index was used)
+    curve = trace(UNIT_CIRCLE, [1.0, 0.0], options=Options(fold_coordinates=(0, 1)))
+    assert len(curve) == 37 and curve.special_points
+    cert = certify(edit(curve), UNIT_CIRCLE, fold_coordinates=(0, 1))
+    assert not cert.proven and cert.check is Check.INPUT and message in cert.message, \
+        cert.message
+
+
+def test_gradients_are_the_jets_of_every_coordinate_at_once():
+    from continuation.gradients import Gradient, gradients
+
+    def formula(x, m):
+        a = m.sin(x[0] * x[1]) / (1.0 + x[2] * x[2])
+        return m.sqrt(2.0 + m.cos(a - x[1])) * (x[0] ** 2) - 3.0 / (x[2] + 4.0) + abs(x[1])
+
+    x = [0.3, -0.7, 1.1]
+    units = [tuple(float(i == j) for i in range(3)) for j in range(3)]
+    gradient = formula([Gradient(v, units[j]) for j, v in enumerate(x)], gradients(FLOATS))
+    for j in range(3):
+        jet = formula([Jet(v, float(i == j)) for i, v in enumerate(x)], jets(FLOATS))
+        assert gradient.v == jet.v
+        assert gradient.d[j] == pytest.approx(jet.d, rel=1e-14, abs=1e-15)
+    B = balls()
+    box = [B.arb(v, 1e-3) for v in x]
+    enclosure = formula([Gradient(b, tuple(B.number(u) for u in units[j]))
+                         for j, b in enumerate(box)], gradients(B))
+    for j in range(3):
+        assert enclosure.d[j].contains(B.number(gradient.d[j]))
