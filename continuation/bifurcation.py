@@ -20,8 +20,9 @@ _EPS = np.finfo(float).eps
 BRANCH_POINT_RATIO = 1e-6
 
 #: a ratio of the bifurcation form's eigenvalues below which their signs are checked against
-#: the error of the differences (a second set with twice the step): a double root (a cusp, a
-#: touching of branches) has eigenvalues of either sign at the level of that error
+#: the error of the differences (a second set with twice the step, and Richardson's
+#: extrapolation of the two): a double root (a cusp, a touching of branches) has eigenvalues of
+#: either sign at the level of that error
 _IN_DOUBT = 1e-4
 
 
@@ -57,12 +58,18 @@ def branch_tangent_pair(evaluator: Evaluator, x: np.ndarray,
     eigenvalues, rotation = np.linalg.eigh(quadratic)
     noise = 0.0
     if min(-eigenvalues[0], eigenvalues[1]) < _IN_DOUBT * max(-eigenvalues[0], eigenvalues[1]):
-        # two nearly equal roots: a real pair, or a double root split by the differences' error?
-        noise = 2.0 * float(np.max(np.abs(
-            quadratic - _bifurcation_form(evaluator, x, psi, v1, v2, 2.0 * h))))
+        # two nearly equal roots: a real pair, or a double root split by the differences'
+        # error? With twice the step the truncation error is 4 times as large: Richardson's
+        # (4 Q(h) - Q(2h)) / 3 cancels it, and |Q(h) - Q(2h)| / 3 estimates what is left
+        wide = _bifurcation_form(evaluator, x, psi, v1, v2, 2.0 * h)
+        noise = float(np.max(np.abs(quadratic - wide))) / 3.0
+        quadratic = (4.0 * quadratic - wide) / 3.0
+        a, b, c = quadratic[0, 0], quadratic[0, 1], quadratic[1, 1]
+        eigenvalues, rotation = np.linalg.eigh(quadratic)
     if not (eigenvalues[0] < -noise and eigenvalues[1] > noise):
         raise ValueError(
-            "x_bp is not a simple branch point: the algebraic bifurcation equation "
+            "x_bp is not a simple branch point (or cannot be told from a double root): the "
+            "algebraic bifurcation equation "
             f"a*alpha^2 + 2*b*alpha*beta + c*beta^2 = 0 has a={a:.3g}, b={b:.3g}, c={c:.3g}, "
             f"discriminant b^2 - a*c = {b * b - a * c:.3g} (must be > 0"
             + (f", with eigenvalues of [[a, b], [b, c]] beyond the differences' error "

@@ -304,9 +304,8 @@ def _needed(steps, bounds, floor: float) -> list | None:
 
 def derivative(problem, x, B) -> list:
     """``H'`` over the ball vector ``x``: rows of ``n + 1`` balls, the residual's derivatives
-    by forward differentiation in balls (:mod:`continuation.gradients`, all columns in one
-    evaluation; column by column with :func:`continuation.numbers.jets` where a formula uses
-    a function gradients lack).
+    by forward differentiation in balls, every column in one evaluation
+    (:mod:`continuation.gradients`).
 
     Not ``problem.jacobian``: the proof rests on the residual alone. A Jacobian that is right
     in floats at the curve's points can be wrong over a box (a ``math.cos`` of a ball is the
@@ -315,22 +314,9 @@ def derivative(problem, x, B) -> list:
     """
     zero, one = B.number(0.0), B.number(1.0)
     n1 = len(x)
-    G = gradients(B)
-    try:
-        # every column in one evaluation (Gradient), where the formula allows
-        units = [tuple(one if c == j else zero for c in range(n1)) for j in range(n1)]
-        row = problem.residual([Gradient(v, units[j]) for j, v in enumerate(x)], G)
-        return [list(r.d) if type(r) is Gradient else [zero] * n1 for r in row]
-    except AttributeError as exc:
-        if getattr(exc, "obj", None) is not G:
-            raise
-        # a function of the namespace that gradients lack (analytic_error): column by column
-    J1 = jets(B)
-    columns = []
-    for j in range(n1):
-        row = problem.residual([Jet(v, one if c == j else zero) for c, v in enumerate(x)], J1)
-        columns.append([r.d if type(r) is Jet else zero for r in row])
-    return [list(entries) for entries in zip(*columns, strict=True)]
+    units = [tuple(one if c == j else zero for c in range(n1)) for j in range(n1)]
+    row = problem.residual([Gradient(v, units[j]) for j, v in enumerate(x)], gradients(B))
+    return [list(r.d) if type(r) is Gradient else [zero] * n1 for r in row]
 
 
 def _preconditioner(problem, frame, tau: float):

@@ -229,6 +229,7 @@ def test_sweep_command_of_200_k_writes_the_same_bytes_for_jobs_1_and_4(tmp_path)
      "distinct numbers"),
     (["--k-min", "1", "--k-max", "2", "-n", "1000001"], "from 1 to 1000000"),
     (["--k-min", "1", "--k-max", "2", "-n", "\uff13"], "is not an integer in ASCII digits"),
+    (["--k-min", "1", "--k-max", "2", "-n", "1_000"], "is not an integer in ASCII digits"),
     (["--k-min", "1", "--k-max", "2", "-n", "3", "--jobs", "257"], "--jobs"),
 ])
 def test_sweep_command_rejects_bad_input(tmp_path, capsys, argv, message):

@@ -169,7 +169,8 @@ def positive_integer(name: str, maximum: int | None = None):
 
     def parse(text: str) -> int:
         try:
-            value = int(text) if text.isascii() else None  # not '３' or '٣', which int() reads
+            # ASCII digits only: not '３' or '٣', nor '1_000', which int() reads
+            value = int(text) if re.fullmatch(r"\s*[+-]?[0-9]+\s*", text) else None
         except ValueError:
             value = None
         if value is None:

@@ -80,6 +80,27 @@ def test_branch_tangents_of_branches_crossing_at_a_small_angle():
     assert first[0] * first[1] * second[0] * second[1] < 0
 
 
+@pytest.mark.parametrize("delta, offset", [(0.003, 100.0), (0.03, 100.0), (0.03, 1000.0)])
+def test_branch_tangents_at_a_small_angle_far_from_the_origin(delta, offset):
+    # (u - l)(u - (1 + delta) l)(1 + u^2), l = lambda - offset: the differences' step grows
+    # with |x|, and so does their error; a first version of the check against a double root
+    # refused these crossings (review of 2026-11-29). The extrapolated form also gives the
+    # angle better than the plain differences did (1.348e-2 for 1.478e-2 at 0.03, 1000).
+    def residual(x):
+        u, lam = x[0], x[1] - offset
+        return np.array([(u - lam) * (u - (1 + delta) * lam) * (1 + u * u)])
+
+    def jacobian(x):
+        u, lam = x[0], x[1] - offset
+        q = (u - lam) * (u - (1 + delta) * lam)
+        return np.array([[(2 * u - (2 + delta) * lam) * (1 + u * u) + 2 * q * u,
+                          (-(2 + delta) * u + 2 * (1 + delta) * lam) * (1 + u * u)]])
+
+    first, second = branch_tangents(Problem(residual, jacobian), [0.0, offset])
+    angle = math.acos(min(1.0, abs(float(first @ second))))
+    assert angle == pytest.approx(math.atan(1 + delta) - math.pi / 4, rel=1e-3)
+
+
 @pytest.mark.parametrize("direction, sign", [(1, 1.0), (-1, -1.0)])
 def test_switch_branch_follows_the_pitchfork_both_ways(pitchfork, trivial_branch, direction,
                                                        sign):
