@@ -26,7 +26,9 @@ class Event:
     name : str
         Name, reported in ``SpecialPoint.name``.
     function : callable
-        ``function(x) -> float`` for ``x`` of shape ``(n + 1,)``.
+        ``function(x) -> float`` for ``x`` of shape ``(n + 1,)``; to be certified
+        (:func:`continuation.certify`), ``function(x, numbers=FLOATS)``, written over the
+        numbers namespace (:mod:`continuation.numbers`).
     direction : {0, 1, -1}, optional
         ``+1``: only zeros where the function increases along the curve,
         ``-1``: only where it decreases, ``0`` (default): both.

@@ -132,6 +132,7 @@ def locate_zero(
         return Located(end.s, None, 0.0, end)
     h = end.s - start.s
     trials: dict[float, Correction] = {}
+    values: dict[float, float] = {}
     # curve points with exact tangents, (s, x, tangent), sorted by s: the
     # prediction of a trial uses the nearest on either side, so that its error,
     # O(width^4), vanishes as the bracket shrinks and Newton has little to do
@@ -174,6 +175,7 @@ def locate_zero(
         if not math.isfinite(value):
             raise EventNotFinite(f"the located function is {value!r} at s={s!r}, "
                                  f"x={evaluator.problem.describe(result.x)}")
+        values[s] = value
         return value
 
     beside = _beside_start(evaluate, start.s, f_start, max(options.event_tol, BESIDE * h))
@@ -188,7 +190,12 @@ def locate_zero(
         result.tangent, result.det = tangent_at(evaluator, result.x, derivative)
         if result.tangent is None:
             raise LocateError(f"no tangent at the located point s={s!r}")
-    return Located(s, result, width, None)
+    # the bracket is narrow, but is the function small there? Next to a singular point the
+    # corrected trials may jump, and the bracket closes on the jump, not on a zero: the
+    # distance the value leaves, at the step's mean slope, is then the accuracy
+    slope = (abs(f_start) + abs(f_end)) / abs(h)
+    miss = abs(values[s]) / slope if slope > 0.0 else math.inf
+    return Located(s, result, max(width, miss), None)
 
 
 def _beside_start(evaluate: Callable[[float], float], start: float, f_start: float,

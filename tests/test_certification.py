@@ -241,6 +241,21 @@ def test_groove_trace_certify_fails_loudly_when_not_proven(tmp_path, capsys, mon
     assert (tmp_path / "boundaries_k1.csv").read_text().splitlines()[1].endswith(",False")
 
 
+def test_groove_sweep_certify_fails_a_k_not_proven_and_writes_nothing(tmp_path, capsys):
+    # k = sqrt 2 exactly: the limit curves and rs_no_roll are not proven there (the junction
+    # meets the seed). The sweep wrote both files with certified = False and exited 0, though
+    # its help says a k with a boundary not proven fails (a new-user review)
+    from groove_model.cli import main
+
+    out = tmp_path / "out"
+    assert main(["sweep", "--k-min", str(math.sqrt(2.0)), "--k-max", str(math.sqrt(2.0)),
+                 "-n", "1", "--out", str(out), "--certify"]) == 1
+    err = capsys.readouterr().err
+    assert "groove sweep: error: k = 1.4142135623730951: dr_limit: not proven: " in err
+    assert "nothing written: 1 of 1 k failed" in err
+    assert not out.exists() or not any(out.iterdir())
+
+
 def test_groove_trace_certify_without_python_flint_is_a_usage_error(tmp_path, capsys,
                                                                      monkeypatch):
     import continuation.numbers

@@ -57,9 +57,11 @@ class SweepResult:
     ----------
     k : float
     ok : bool
-        Whether every boundary was traced to its expected end (``BoundarySet.ok``).
+        Whether every boundary was traced to its expected end (``BoundarySet.ok``) and, if
+        certification was asked for, proven.
     failures : tuple of str
-        What failed (``BoundarySet.failures``); empty when ``ok``.
+        What failed (``BoundarySet.failures``, then each boundary not proven with its
+        certificate's message); empty when ``ok``.
     notes : tuple of str
         ``BoundarySet.notes``.
     boundaries : pandas.DataFrame
@@ -92,7 +94,11 @@ def _trace_chunk(ks: list[float], keep_unphysical: bool, options: Options | None
     for k in ks:
         traced = trace_boundaries(Parameters(k, compliance), keep_unphysical=keep_unphysical,
                                   options=options, certify=certify)
-        results.append(SweepResult(traced.k, traced.ok, traced.failures, traced.notes,
+        # with certify, a boundary not proven fails its k (as groove trace --certify exits 1)
+        unproven = tuple(f"{c.name}: {c.certificate.message}" for c in traced.curves.values()
+                         if c.certified is False)
+        results.append(SweepResult(traced.k, traced.ok and not unproven,
+                                   traced.failures + unproven, traced.notes,
                                    traced.to_frame(partial=True),
                                    traced.special_points_frame(partial=True)))
     return results
@@ -205,7 +211,8 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
         Run the traces there instead (``jobs`` must then be ``None``); the executor is not
         shut down. Its workers must be able to import ``groove_model``.
     keep_unphysical, options, certify
-        As for :func:`~groove_model.tracing.tracer.trace_boundaries`.
+        As for :func:`~groove_model.tracing.tracer.trace_boundaries`; with ``certify``, a ``k``
+        with a boundary not proven is a failure.
     compliance : Compliance or float, optional
         The contact's compliance or its ratio ``c`` (default the paper's law, ``c = 1``), the
         same for every ``k``; ``2/3 <= c <= 1``.

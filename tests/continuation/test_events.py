@@ -243,3 +243,21 @@ def test_an_event_not_finite_on_the_curve_inside_a_step_fails_loudly():
     curve = trace(_line(), [0.0, 0.0], 1, Options(ds_max=0.5, max_arclength=4.0), events=[event])
     assert curve.status is Status.EVENT_NOT_FINITE
     assert "event 'holey' is nan" in curve.message
+
+
+def test_an_event_located_at_a_singular_point_reports_how_far_it_may_be():
+    # the folium x^3 + y^3 = 3 x y through its node at the origin, with the event x = y: near
+    # the node the corrected trials jump, and the bracket closed (to 7e-13) on a point where
+    # x - y is 1.5e-6, reported with accuracy 7e-13 (a new-user review). The accuracy is now
+    # at least the distance the value leaves at the step's slope; a regular zero keeps its own.
+    folium = Problem(lambda x: np.array([x[0] ** 3 + x[1] ** 3 - 3.0 * x[0] * x[1]]),
+                     lambda x: np.array([[3 * x[0] ** 2 - 3 * x[1], 3 * x[1] ** 2 - 3 * x[0]]]))
+    diagonal = Event("x = y", lambda x: x[0] - x[1])
+    curve = trace(folium, [1.5, 1.4], options=Options(fold_coordinates=(0, 1)),
+                  events=[*box_events(lower={0: -2.0, 1: -2.0}, upper={0: 3.0, 1: 3.0}),
+                          diagonal])
+    zeros = [p for p in curve.special("event") if p.name == "x = y"]
+    assert len(zeros) == 2
+    regular, at_node = zeros
+    assert abs(regular.x[0] - regular.x[1]) <= 1e-12 and regular.accuracy <= 1e-10
+    assert at_node.accuracy >= 0.5 * abs(at_node.x[0] - at_node.x[1])
