@@ -253,7 +253,7 @@ def test_groove_sweep_certify_fails_a_k_not_proven_and_writes_nothing(tmp_path, 
     err = capsys.readouterr().err
     assert "groove sweep: error: k = 1.4142135623730951: dr_limit: not proven: " in err
     assert "nothing written: 1 of 1 k failed" in err
-    assert not out.exists() or not any(out.iterdir())
+    assert not out.exists()  # nor the directory it would have written into
 
 
 def test_groove_trace_certify_without_python_flint_is_a_usage_error(tmp_path, capsys,
