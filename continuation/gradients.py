@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import functools
 import math
+from itertools import repeat
+from operator import add, mul, neg, sub, truediv
 
 from .numbers import _WIDENINGS, FLOATS, _largest
 
@@ -30,37 +32,35 @@ class Gradient:
 
     def __add__(self, other):
         if type(other) is Gradient:
-            return Gradient(self.v + other.v,
-                            tuple(a + b for a, b in zip(self.d, other.d, strict=True)))
+            return Gradient(self.v + other.v, tuple(map(add, self.d, other.d)))
         return Gradient(self.v + other, self.d)
 
     __radd__ = __add__
 
     def __sub__(self, other):
         if type(other) is Gradient:
-            return Gradient(self.v - other.v,
-                            tuple(a - b for a, b in zip(self.d, other.d, strict=True)))
+            return Gradient(self.v - other.v, tuple(map(sub, self.d, other.d)))
         return Gradient(self.v - other, self.d)
 
     def __rsub__(self, other):
-        return Gradient(other - self.v, tuple(-a for a in self.d))
+        return Gradient(other - self.v, tuple(map(neg, self.d)))
 
     def __neg__(self):
-        return Gradient(-self.v, tuple(-a for a in self.d))
+        return Gradient(-self.v, tuple(map(neg, self.d)))
 
     def __mul__(self, other):
         if type(other) is Gradient:
             u, w = self.v, other.v
-            return Gradient(u * w,
-                            tuple(a * w + u * b for a, b in zip(self.d, other.d, strict=True)))
-        return Gradient(self.v * other, tuple(a * other for a in self.d))
+            return Gradient(u * w, tuple(map(add, map(mul, self.d, repeat(w)),
+                                             map(mul, repeat(u), other.d))))
+        return Gradient(self.v * other, tuple(map(mul, self.d, repeat(other))))
 
     __rmul__ = __mul__
 
     def __truediv__(self, other):
         if type(other) is Gradient:
             return self * other._reciprocal()
-        return Gradient(self.v / other, tuple(a / other for a in self.d))
+        return Gradient(self.v / other, tuple(map(truediv, self.d, repeat(other))))
 
     def __rtruediv__(self, other):
         return self._reciprocal() * other
@@ -68,7 +68,7 @@ class Gradient:
     def _reciprocal(self):
         r = 1.0 / self.v
         f1 = -r * r
-        return Gradient(r, tuple(a * f1 for a in self.d))
+        return Gradient(r, tuple(map(mul, self.d, repeat(f1))))
 
     def __pow__(self, n: int):
         if n == 2:
@@ -102,7 +102,7 @@ def _gradient_chain(a, f0, f1):
     """``f(a)`` for a gradient ``a`` from ``f`` and ``f'`` at its value."""
     if type(a) is not Gradient:
         return f0
-    return Gradient(f0, tuple(f1 * g for g in a.d))
+    return Gradient(f0, tuple(map(mul, repeat(f1), a.d)))
 
 
 class _Gradients:
