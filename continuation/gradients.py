@@ -14,7 +14,7 @@ import math
 from itertools import repeat
 from operator import add, mul, neg, sub, truediv
 
-from .numbers import _WIDENINGS, FLOATS, _largest
+from .numbers import _WIDENINGS, FLOATS, _Derivatives, _largest
 
 __all__ = ["Gradient", "gradients"]
 
@@ -105,24 +105,17 @@ def _gradient_chain(a, f0, f1):
     return Gradient(f0, tuple(map(mul, repeat(f1), a.d)))
 
 
-class _Gradients:
+class _Gradients(_Derivatives):
     """Gradients over a base namespace: a formula's derivatives along every coordinate in one
-    evaluation (the functions and constants of :func:`jets`, to first order)."""
+    evaluation (the functions and constants of :func:`~continuation.numbers.jets`, to first
+    order)."""
 
-    def __init__(self, base) -> None:
-        self.base = base
-        self.name = f"gradients over {base.name}"
-        self.rigorous = base.rigorous
+    kind = Gradient
+    label = "gradients"
 
-    @property
-    def pi(self):
-        return self.base.pi
-
-    def value(self, x):
-        return x.v if type(x) is Gradient else x
-
-    def number(self, x):
-        return x if type(x) is Gradient else self.base.number(x)
+    @staticmethod
+    def parts(x) -> tuple:
+        return (x.v, *x.d)
 
     def sin(self, a):
         v = self.value(a)
@@ -139,9 +132,6 @@ class _Gradients:
     def sinc(self, a):
         f0, f1, _ = self.base.sinc_derivatives(self.value(a))
         return _gradient_chain(a, f0, f1)
-
-    def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
-        return self.base.gauss_legendre(n, panels)
 
     def analytic_error(self, bound, args):
         """The remainder ``E(args)`` and its derivatives along every coordinate: as
@@ -164,11 +154,6 @@ class _Gradients:
                                                                           strict=True))
             d.append(base.error(best))
         return Gradient(error0, tuple(d))
-
-    def is_finite(self, x) -> bool:
-        if type(x) is not Gradient:
-            return self.base.is_finite(x)
-        return self.base.is_finite(x.v) and all(self.base.is_finite(a) for a in x.d)
 
 
 @functools.lru_cache(maxsize=4)

@@ -377,12 +377,17 @@ def _chain(a, f0, f1, f2):
     return Jet(f0, f1 * a.d, dd)
 
 
-class _Jets:
-    """Jets over a base namespace: derivatives of a formula along one direction."""
+class _Derivatives:
+    """What the namespaces of numbers with derivatives share (jets here, and
+    :mod:`continuation.gradients`): the base namespace, its constants and quadrature, and
+    the value of a number of ``kind`` (its ``v``)."""
+
+    kind: type
+    label: str
 
     def __init__(self, base) -> None:
         self.base = base
-        self.name = f"jets over {base.name}"
+        self.name = f"{self.label} over {base.name}"
         self.rigorous = base.rigorous
 
     @property
@@ -390,10 +395,34 @@ class _Jets:
         return self.base.pi
 
     def value(self, x):
-        return x.v if type(x) is Jet else x
+        return x.v if type(x) is self.kind else x
 
     def number(self, x):
-        return x if type(x) is Jet else self.base.number(x)
+        return x if type(x) is self.kind else self.base.number(x)
+
+    def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
+        return self.base.gauss_legendre(n, panels)
+
+    def is_finite(self, x) -> bool:
+        if type(x) is not self.kind:
+            return self.base.is_finite(x)
+        return all(self.base.is_finite(p) for p in self.parts(x))
+
+    @staticmethod
+    def parts(x) -> tuple:
+        """The value and derivatives of a number of ``kind``."""
+        raise NotImplementedError
+
+
+class _Jets(_Derivatives):
+    """Jets over a base namespace: derivatives of a formula along one direction."""
+
+    kind = Jet
+    label = "jets"
+
+    @staticmethod
+    def parts(x) -> tuple:
+        return (x.v, x.d) if x.dd is None else (x.v, x.d, x.dd)
 
     def sin(self, a):
         b = self.base
@@ -414,9 +443,6 @@ class _Jets:
 
     def sinc(self, a):
         return _chain(a, *self.base.sinc_derivatives(self.value(a)))
-
-    def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
-        return self.base.gauss_legendre(n, panels)
 
     def analytic_error(self, bound, args):
         """The remainder ``E(args)`` and its derivatives along the jets' direction.
@@ -448,12 +474,6 @@ class _Jets:
             best2 = min(best2, (2.0 * sup * speed * speed / (widen * widen)
                                 + sup * curving / widen) * (1.0 + 1e-12))
         return Jet(error0, base.error(best1), base.error(best2) if second_order else None)
-
-    def is_finite(self, x) -> bool:
-        if type(x) is not Jet:
-            return self.base.is_finite(x)
-        parts = (x.v, x.d) if x.dd is None else (x.v, x.d, x.dd)
-        return all(self.base.is_finite(p) for p in parts)
 
 
 @functools.lru_cache(maxsize=4)
