@@ -14,12 +14,12 @@ import math
 from itertools import repeat
 from operator import add, mul, neg, sub, truediv
 
-from .numbers import _WIDENINGS, FLOATS, _Derivatives, _largest
+from .numbers import _WIDENINGS, FLOATS, _ComparedByValue, _Derivatives, _largest
 
 __all__ = ["Gradient", "gradients"]
 
 
-class Gradient:
+class Gradient(_ComparedByValue):
     """A number with its derivatives along every coordinate at once (``d``, a tuple of base
     numbers): one evaluation of a formula gives its whole gradient, where jets
     (:class:`~continuation.numbers.Jet`) need one per coordinate, and the elementary functions
@@ -84,18 +84,6 @@ class Gradient:
         if self.v < 0.0:
             return -self
         return Gradient(abs(self.v), tuple(a * math.nan for a in self.d))
-
-    def __lt__(self, other):
-        return self.v < (other.v if type(other) is Gradient else other)
-
-    def __le__(self, other):
-        return self.v <= (other.v if type(other) is Gradient else other)
-
-    def __gt__(self, other):
-        return self.v > (other.v if type(other) is Gradient else other)
-
-    def __ge__(self, other):
-        return self.v >= (other.v if type(other) is Gradient else other)
 
 
 def _gradient_chain(a, f0, f1):

@@ -272,7 +272,27 @@ def balls() -> _Balls:
     return _Balls(require_flint())
 
 
-class Jet:
+class _ComparedByValue:
+    """Comparisons of numbers with derivatives (``v`` their value): of the values, for
+    branches in formulas."""
+
+    __slots__ = ()
+    v: object
+
+    def __lt__(self, other):
+        return self.v < (other.v if type(other) is type(self) else other)
+
+    def __le__(self, other):
+        return self.v <= (other.v if type(other) is type(self) else other)
+
+    def __gt__(self, other):
+        return self.v > (other.v if type(other) is type(self) else other)
+
+    def __ge__(self, other):
+        return self.v >= (other.v if type(other) is type(self) else other)
+
+
+class Jet(_ComparedByValue):
     """A number with its first (``d``) and optional second (``dd``) derivative in one direction.
 
     ``v``, ``d`` and ``dd`` are base numbers (floats or balls); ``dd`` is ``None`` for
@@ -343,18 +363,6 @@ class Jet:
             return -self
         return Jet(abs(self.v), self.d * math.nan,
                    None if self.dd is None else self.dd * math.nan)
-
-    def __lt__(self, other):
-        return self.v < (other.v if type(other) is Jet else other)
-
-    def __le__(self, other):
-        return self.v <= (other.v if type(other) is Jet else other)
-
-    def __gt__(self, other):
-        return self.v > (other.v if type(other) is Jet else other)
-
-    def __ge__(self, other):
-        return self.v >= (other.v if type(other) is Jet else other)
 
     def __repr__(self) -> str:
         return f"Jet({self.v!r}, {self.d!r}, {self.dd!r})"
