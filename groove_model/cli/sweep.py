@@ -184,7 +184,6 @@ def run(args) -> int:
         require_certify_extra()
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
                             compliance=compliance, certify=args.certify)
-    new = [d for d in (out, *out.parents) if not d.exists()]  # what this run creates
     try:
         with _Termination(Progress(len(ks))).installed() as progress:
             paths, failed = write_sweep(results, out, suffix=compliance_label(compliance),
@@ -192,31 +191,16 @@ def run(args) -> int:
     except BrokenProcessPool:
         # a worker was killed (out of memory, a signal to it alone, or a Ctrl-C that reached the
         # workers while the parent was starting them, where Python can drop the parent's)
-        _remove_empty(new)
         print("groove sweep: error: a worker process ended abruptly (killed, interrupted or out "
               "of memory); nothing written", file=sys.stderr)
         return EXIT_FAILED
-    except BaseException:
-        _remove_empty(new)
-        raise
     for result in failed:
         for failure in result.failures:
             print(f"groove sweep: error: k = {k_text(result.k)}: {failure}", file=sys.stderr)
     if failed:
-        _remove_empty(new)
         print(f"groove sweep: nothing written: {len(failed)} of {len(ks)} k failed (see above)",
               file=sys.stderr)
         return EXIT_FAILED
     print(f"{len(ks)} k from {k_text(args.k_min)} to {k_text(args.k_max)}: "
           f"{', '.join(str(p) for p in paths)}")
     return EXIT_OK
-
-
-def _remove_empty(created) -> None:
-    """Remove the directories this run created (deepest first) where they are still empty:
-    a sweep that wrote nothing leaves nothing."""
-    for directory in created:
-        try:
-            directory.rmdir()
-        except OSError:
-            return  # not empty (or gone): its parents are not empty either

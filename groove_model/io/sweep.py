@@ -60,7 +60,8 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     Returns
     -------
     paths : tuple of Path
-        The two files (:data:`SWEEP_FILES`), or ``()`` if a ``k`` failed (nothing is left).
+        The two files (:data:`SWEEP_FILES`), or ``()`` if a ``k`` failed (nothing is left,
+        nor the directories it created).
     failed : list of SweepResult
         The results that were not ok.
 
@@ -76,6 +77,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     bytes depend only on the traced values, not on how the sweep was run.
     """
     directory = Path(directory)
+    created = [d for d in (directory, *directory.parents) if not d.exists()]  # deepest first
     directory.mkdir(parents=True, exist_ok=True)
     remove_stale_temporaries(directory)
     targets = sweep_files(directory, prefix, suffix)
@@ -103,6 +105,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
         if failed or first:
             for _, name in opened:
                 name.unlink(missing_ok=True)
+            _remove_empty(created)
             return (), failed
         commit_all([(name, path) for (_, name), path in zip(opened, targets, strict=True)])
         return tuple(targets), failed
@@ -111,6 +114,17 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
             with contextlib.suppress(OSError):
                 handle.close()  # (flushing a full disk's buffer fails again)
             name.unlink(missing_ok=True)
+        _remove_empty(created)
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
             raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc
         raise
+
+
+def _remove_empty(created: list[Path]) -> None:
+    """Remove the directories a sweep created (deepest first) while they are empty: a sweep
+    that writes nothing leaves nothing."""
+    for directory in created:
+        try:
+            directory.rmdir()
+        except OSError:
+            return  # not empty (or gone): its parents are not empty either
