@@ -277,8 +277,15 @@ def test_plot_refuses_the_same_k_twice(written, tmp_path, capsys):
 
 
 @pytest.mark.parametrize("column, value, message", [
-    ("k", 1e9, "k = 1e+09 is outside the range the boundaries are traced for"),
+    ("k", 1e9, "data row 1: friction coefficient k = 1e+09 is outside the range the boundaries "
+               "are traced for: 1e-4 <= k <= 1e6"),
+    # k <= 0 was "outside the allowed range: friction coefficient k > 0", in another form
+    ("k", 0.0, "data row 1: friction coefficient k = 0.0 is outside the range the boundaries "
+               "are traced for: 1e-4 <= k <= 1e6"),
+    ("k", -2.0, "friction coefficient k = -2.0 is outside the range"),
     ("compliance", 5.0, "compliance ratio c = 5.0 is outside the range the boundaries are traced"),
+    ("compliance", 0.0, "data row 1: compliance ratio c = 0.0 is outside the range the "
+                        "boundaries are traced for: 2/3 <= c <= 1"),
 ])
 def test_plot_refuses_a_k_or_compliance_outside_the_traced_ranges(column, value, message,
                                                                    written, tmp_path, capsys):

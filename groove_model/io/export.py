@@ -122,23 +122,19 @@ def read_boundaries_csv(path) -> pd.DataFrame:
             raise ValueError(f"{path}: column {column} = {shown!r} in data row "
                              f"{row + 1} is not a {'finite ' if finite_required else ''}number")
         frame[column] = values.astype(float)
-    for column, name, traced in (("k", "friction coefficient k", check_traced_friction),
-                                 ("compliance", "compliance ratio", check_traced_ratio)):
-        bad = ~(frame[column] > 0)
-        if bad.any():
-            row = int(np.flatnonzero(bad.to_numpy())[0])
-            raise ValueError(f"{path}: column {column} = {float(frame[column].iloc[row])!r} in "
-                             f"data row {row + 1} is outside the allowed range: {name} > 0")
+    for column, traced in (("k", check_traced_friction), ("compliance", check_traced_ratio)):
         values = list(dict.fromkeys(frame[column]))
+        for value in values:  # in the range the boundaries are traced for (0 and 1e9 alike)
+            try:
+                traced(float(value))
+            except ValueError as exc:
+                row = int(np.flatnonzero((frame[column] == value).to_numpy())[0])
+                raise ValueError(f"{path}: data row {row + 1}: {exc}") from None
         if len(values) > 1:
             raise ValueError(
                 f"{path}: column {column} holds {len(values)} values ("
                 f"{', '.join(map(k_text, values[:3]))}{', ...' if len(values) > 3 else ''}); "
                 f"a boundaries CSV holds one {column}, as groove trace writes it")
-        try:
-            traced(float(values[0]))  # the range the boundaries are traced for
-        except ValueError as exc:
-            raise ValueError(f"{path}: {exc}") from None
     _check_domain_rows(path, frame)
     physical = frame["physical"].astype(str).str.lower()
     certified = frame["certified"].fillna("").astype(str).str.lower()
