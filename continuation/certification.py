@@ -27,10 +27,10 @@ those met along the curve from its first point to its last: a zero at the seam i
 lists) each zero twice.
 
 Anything else fails with the first segment or point where a test failed and why; a curve is
-never reported proven on evidence that is only numerical (``H'`` over the boxes is the
-residual's own derivative; the fold functions' derivatives take ``jacobian`` to be that, as
-checked at the points). Branch points are not certified, and no neighbourhood of a singular
-end is cut out: a curve ending at a singular point fails.
+never reported proven on evidence that is only numerical (every derivative over a box, of
+``H`` and of the fold functions, is the residual's own, by forward differentiation in
+balls; ``jacobian`` serves in floats only). Branch points are not certified, and no
+neighbourhood of a singular end is cut out: a curve ending at a singular point fails.
 """
 
 from __future__ import annotations
@@ -517,9 +517,9 @@ def certify(curve: Curve, problem, events=(), *, fold_coordinates=None,
         A traced curve (points, unit tangents, special points).
     problem : Problem or object
         ``residual(x, numbers)`` (n values) and ``jacobian(x, numbers)`` (n rows of n + 1),
-        written over a numbers namespace (:mod:`continuation.numbers`); called with floats,
-        balls and jets. The fold functions' derivatives take ``jacobian`` to be that of
-        ``residual`` (checked at the points: :mod:`continuation.certify_input`).
+        written over a numbers namespace (:mod:`continuation.numbers`). The proof evaluates
+        and differentiates ``residual`` itself (floats, balls, jets, gradients); ``jacobian``
+        serves in floats, checked against it at the points (:mod:`continuation.certify_input`).
     events : sequence of Event
         The run's events, in its order (positions as in ``SpecialPoint.event``), with
         functions ``function(x, numbers)``; an event may be replaced by one with the same

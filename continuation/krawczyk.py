@@ -32,8 +32,8 @@ from dataclasses import dataclass, field
 from .gradients import Gradient, gradients
 from .numbers import FLOATS, Jet, jets
 
-__all__ = ["Failure", "Frame", "Piece", "Slice", "determinant", "kernel", "inverse",
-           "solve_piece", "solve_slice", "square_box"]
+__all__ = ["Failure", "Frame", "Piece", "Slice", "derivative", "determinant", "kernel",
+           "inverse", "solve_piece", "solve_slice", "square_box"]
 
 
 #: segments shorter than this (relative to 1 + |x|) are framed along their tangents

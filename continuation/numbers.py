@@ -54,8 +54,10 @@ def _float_sinc(u: float) -> float:
     return math.sin(u) / u if abs(u) > 1e-4 else 1.0 - u * u / 6.0
 
 
-def _float_sinc_derivatives(u: float):
-    """``(sinc u, sinc' u, sinc'' u)`` in floats."""
+def _float_sinc_derivatives(u: float, order: int = 2) -> tuple:
+    """``(sinc u, sinc' u, ..., sinc^(order) u)`` in floats (at least three)."""
+    if order > 2:
+        return _sinc_higher(u, order, math.sin, math.cos, _sinc_series(u, order, 12))
     if abs(u) < 1e-2:
         u2 = u * u
         return 1.0 - u2 / 6.0 + u2 * u2 / 120.0, u * (-1.0 / 3.0 + u2 / 30.0), \
@@ -63,6 +65,39 @@ def _float_sinc_derivatives(u: float):
     s0 = math.sin(u) / u
     s1 = (math.cos(u) - s0) / u
     return s0, s1, -s0 - 2.0 * s1 / u
+
+
+def _sinc_term(u, j: int, k: int, one=1.0):
+    """The term ``(-1)^k (2k)! / ((2k - j)! (2k + 1)!) u^(2k - j)`` of ``sinc^(j)(u)``'s series
+    (``one``: 1 as a ball for an enclosure of the rational coefficient; the power by products:
+    python-flint's is NaN for a ball centred at 0)."""
+    c = one * math.factorial(2 * k) / (math.factorial(2 * k - j) * math.factorial(2 * k + 1))
+    term = (-c if k % 2 else c) + 0.0 * u
+    for _ in range(2 * k - j):
+        term = term * u
+    return term
+
+
+def _sinc_series(u, order: int, terms: int):
+    """``sinc^(j)(u)`` for ``j <= order`` by ``terms`` terms of their series, or ``None`` where
+    ``|u| >= 1/10`` (terms from ``2k >= j``: each falls by more than half there)."""
+    if not abs(u) < 0.1:
+        return None
+    return [sum(_sinc_term(u, j, k) for k in range((j + 1) // 2, (j + 1) // 2 + terms))
+            for j in range(order + 1)]
+
+
+def _sinc_higher(u, order: int, sin, cos, series) -> tuple:
+    """``sinc^(j)(u)`` for ``j <= order``: ``series`` near 0, else the recurrence
+    ``sinc^(j) = (sin^(j) u - j sinc^(j-1)) / u`` (from ``u sinc u = sin u``)."""
+    if series is not None:
+        return tuple(series)
+    s, c = sin(u), cos(u)
+    cycle = (s, c, -s, -c)
+    values = [s / u]
+    for j in range(1, order + 1):
+        values.append((cycle[j % 4] - j * values[-1]) / u)
+    return tuple(values)
 
 
 @functools.lru_cache(maxsize=8)
@@ -222,24 +257,41 @@ class _Balls:
     def sinc(self, a):
         return self.number(a).sinc()
 
-    def sinc_derivatives(self, u):
-        """``(sinc u, sinc' u, sinc'' u)``, by their alternating series near 0.
+    def sinc_derivatives(self, u, order: int = 2):
+        """``(sinc u, sinc' u, sinc'' u)``, by their alternating series near 0 (and the
+        derivatives up to ``order`` if it is higher: below).
 
         ``sinc^(j)(u) = sum_k (-1)^k (2k)!/(2k-j)! u^(2k-j)/(2k+1)!``; for ``|u| < 1/10`` the
         terms fall by more than half each, so the tail is within twice the first omitted term
         (beyond, the quotients lose at most a factor 10 to cancellation).
         """
         u = self.number(u)
+        if order > 2:
+            return self._sinc_higher(u, order)
         s0 = u.sinc()
         if abs(u) < 0.1:
             u2 = u * u
             tail1 = 2.0 * abs(u) * u2 * u2 * u2 / 45360.0
             tail2 = 2.0 * u2 * u2 * u2 / 6480.0
-            s1 = u * (-1.0 / 3.0 + u2 * (1.0 / 30.0 - u2 / 840.0)) + self.arb(0, tail1.upper())
-            s2 = -1.0 / 3.0 + u2 * (1.0 / 10.0 - u2 / 168.0) + self.arb(0, tail2.upper())
+            one = self.arb(1)  # the coefficients as balls: 1/3 is no float
+            s1 = u * (-one / 3 + u2 * (one / 30 - u2 / 840)) + self.arb(0, tail1.upper())
+            s2 = -one / 3 + u2 * (one / 10 - u2 / 168) + self.arb(0, tail2.upper())
             return s0, s1, s2
         s1 = (u.cos() - s0) / u
         return s0, s1, -s0 - 2.0 * s1 / u
+
+    def _sinc_higher(self, u, order: int) -> tuple:
+        """``sinc^(j)(u)`` for ``j <= order``: for ``|u| < 1/10`` six terms of each series, the
+        tail within twice the first omitted term (the terms fall by more than half each);
+        beyond, the recurrence of :func:`_sinc_higher` (at most a factor 10 lost to
+        cancellation per order)."""
+        series = None
+        if abs(u) < 0.1:
+            r, one = self.arb(abs(u).upper()), self.arb(1)
+            series = [sum(_sinc_term(u, j, k, one) for k in range((j + 1) // 2, (j + 1) // 2 + 6))
+                      + self.arb(0, (2.0 * abs(_sinc_term(r, j, (j + 1) // 2 + 6, one))).upper())
+                      for j in range(order + 1)]
+        return _sinc_higher(u, order, self.sin, self.cos, series)
 
     def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
         key = (n, panels, self._ctx.prec)
@@ -308,6 +360,8 @@ class Jet(_ComparedByValue):
         if type(other) is Jet:
             dd = None if self.dd is None else self.dd + other.dd
             return Jet(self.v + other.v, self.d + other.d, dd)
+        if isinstance(other, _ComparedByValue):
+            return NotImplemented  # a gradient over jets: a jet is one of its base numbers
         return Jet(self.v + other, self.d, self.dd)
 
     __radd__ = __add__
@@ -316,6 +370,8 @@ class Jet(_ComparedByValue):
         if type(other) is Jet:
             dd = None if self.dd is None else self.dd - other.dd
             return Jet(self.v - other.v, self.d - other.d, dd)
+        if isinstance(other, _ComparedByValue):
+            return NotImplemented
         return Jet(self.v - other, self.d, self.dd)
 
     def __rsub__(self, other):
@@ -329,6 +385,8 @@ class Jet(_ComparedByValue):
             dd = None if self.dd is None else (self.dd * other.v + 2.0 * self.d * other.d
                                                + self.v * other.dd)
             return Jet(self.v * other.v, self.d * other.v + self.v * other.d, dd)
+        if isinstance(other, _ComparedByValue):
+            return NotImplemented
         return Jet(self.v * other, self.d * other, None if self.dd is None else self.dd * other)
 
     __rmul__ = __mul__
@@ -336,6 +394,8 @@ class Jet(_ComparedByValue):
     def __truediv__(self, other):
         if type(other) is Jet:
             return self * other._reciprocal()
+        if isinstance(other, _ComparedByValue):
+            return NotImplemented
         return Jet(self.v / other, self.d / other, None if self.dd is None else self.dd / other)
 
     def __rtruediv__(self, other):
@@ -452,6 +512,13 @@ class _Jets(_Derivatives):
     def sinc(self, a):
         return _chain(a, *self.base.sinc_derivatives(self.value(a)))
 
+    def sinc_derivatives(self, u, order: int = 2) -> tuple:
+        """``sinc^(j)(u)`` for ``j <= order`` as jets (for gradients over jets)."""
+        if type(u) is not Jet:
+            return self.base.sinc_derivatives(u, order)
+        f = self.base.sinc_derivatives(u.v, order + 2)
+        return tuple(_chain(u, f[j], f[j + 1], f[j + 2]) for j in range(order + 1))
+
     def analytic_error(self, bound, args):
         """The remainder ``E(args)`` and its derivatives along the jets' direction.
 
@@ -465,8 +532,8 @@ class _Jets(_Derivatives):
         base = self.base
         values = tuple(self.value(a) for a in args)
         error0 = base.analytic_error(bound, values)
-        if not base.rigorous:
-            return error0
+        if not base.rigorous or not any(type(a) is Jet for a in args):
+            return error0  # (arguments fixed along the direction: a number, of any order)
         intervals = tuple(base.bounds(v) for v in values)
         speed = _largest([base.bounds(abs(a.d))[1] for a in args if type(a) is Jet])
         second_order = any(type(a) is Jet and a.dd is not None for a in args)

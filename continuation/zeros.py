@@ -7,7 +7,10 @@ the folds in ``x_c``). On each segment ``phi`` is either *excluded* from zero (i
 over the tube does not contain 0) or *monotone* (its derivative along the arc, from jets in
 the direction of the kernel ``k``, has one sign), possibly after cutting the segment into
 leaves; a monotone stretch has at most one zero, and it has one exactly when ``phi`` has
-opposite signs at its ends (the proven points of the curve).
+opposite signs at its ends (the proven points of the curve). ``H'`` and its derivatives along
+the arc are the residual's own (:func:`continuation.krawczyk.derivative` over jets: gradients
+over jets), never ``problem.jacobian``: a Jacobian right at the points only would give the
+slope of another function.
 
 At a point where a zero is reported (or at an end of the curve where ``phi`` vanishes) the
 zero is proven by Krawczyk's test on the augmented system ``(H, phi) = 0`` in a small box:
@@ -53,7 +56,7 @@ class Function:
         if self.event is not None:
             value = self.event.function(x, J2)
         else:
-            value = kernel(problem.jacobian(x, J2))[self.coordinate]
+            value = kernel(derivative(problem, x, J2))[self.coordinate]
         return value.d if type(value) is Jet else B.number(0.0)
 
     def curvature(self, box, k, problem, B):
@@ -64,14 +67,15 @@ class Function:
         J2 = jets(B)
         zero = B.number(0.0)
         line = [Jet(b, kj, zero) for b, kj in zip(box, k, strict=True)]
-        turn = kernel(problem.jacobian([Jet(b, kj) for b, kj in zip(box, k, strict=True)], J2))
+        turn = kernel(derivative(problem, [Jet(b, kj) for b, kj in zip(box, k, strict=True)],
+                                 J2))
         w = [c.d if type(c) is Jet else zero for c in turn]
         along = [Jet(b, wj) for b, wj in zip(box, w, strict=True)]
         if self.event is not None:
             second, first = self.event.function(line, J2), self.event.function(along, J2)
         else:
-            second = kernel(problem.jacobian(line, J2))[self.coordinate]
-            first = kernel(problem.jacobian(along, J2))[self.coordinate]
+            second = kernel(derivative(problem, line, J2))[self.coordinate]
+            first = kernel(derivative(problem, along, J2))[self.coordinate]
         return ((second.dd if type(second) is Jet else zero)
                 + (first.d if type(first) is Jet else zero))
 
@@ -81,10 +85,10 @@ class Function:
             H = list(problem.residual(x, m))
             if self.event is not None:
                 return H + [self.event.function(x, m)]
-            return H + [kernel(problem.jacobian(x, m))[self.coordinate]]
+            return H + [kernel(derivative(problem, x, m))[self.coordinate]]
 
         def DF(x, m):
-            rows = [list(r) for r in problem.jacobian(x, m)]
+            rows = derivative(problem, x, m)
             J1 = jets(m)
             gradient = []
             for j in range(len(x)):
@@ -92,7 +96,7 @@ class Function:
                 if self.event is not None:
                     value = self.event.function(xj, J1)
                 else:
-                    value = kernel(problem.jacobian(xj, J1))[self.coordinate]
+                    value = kernel(derivative(problem, xj, J1))[self.coordinate]
                 gradient.append(value.d if type(value) is Jet else 0.0)
             return rows + [gradient]
 

@@ -8,6 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from continuation.certify_input import jacobian_mismatch
+from continuation.krawczyk import derivative
 from continuation.numbers import FLOATS, Jet, jets
 from groove_model.model.boundaries import BOUNDARY_NAMES, BoundarySystem
 from groove_model.model.parameters import Compliance, Parameters
@@ -123,3 +124,30 @@ def test_the_edge_function_has_the_sign_of_gamma_minus_delta_on_the_boundaries(k
             value = system.edge_function(system.from_x(x), FLOATS)
             if abs(theta_R) > 1e-9:
                 assert np.sign(value) == np.sign(theta_R), (name, x)
+
+
+@settings(max_examples=25, deadline=None)
+@given(x=points(), k=st.floats(0.01, 1000.0), c=st.sampled_from([1.0, 0.6]),
+       direction=st.lists(st.floats(-1.0, 1.0), min_size=4, max_size=4),
+       width=st.sampled_from([0.0, 1e-9]))
+def test_the_jacobians_derivatives_from_the_residual_agree_with_the_jacobians_jets(
+        x, k, c, direction, width):
+    # certification takes the slopes and curvatures of the fold functions from the residual
+    # alone (gradients over jets: second and third derivatives, the quadrature's remainder
+    # by Cauchy's estimates); both are enclosures of one thing, so they must overlap
+    m = jets(B)
+    for system in systems(Parameters(k, Compliance(c)), x):
+        y = system.from_x(x)
+        box = [B.arb(v, width * (1 + abs(v))) for v in y]
+        for second in (False, True):
+            line = [Jet(b, B.number(dj), B.number(0.0) if second else None)
+                    for b, dj in zip(box, direction, strict=True)]
+            ours, theirs = derivative(system, line, m), system.jacobian(line, m)
+            for row, their_row in zip(ours, theirs, strict=True):
+                for got, want in zip(row, their_row, strict=True):
+                    for part in ("v", "d", "dd") if second else ("v", "d"):
+                        g, w = (getattr(z, part) if type(z) is Jet else
+                                (z if part == "v" else B.number(0.0)) for z in (got, want))
+                        assert B.number(g).overlaps(B.number(w)), (system, part, g, w)
+                        if width == 0.0 and part != "dd":
+                            assert B.is_finite(B.number(g)), (system, part)

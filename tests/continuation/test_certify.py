@@ -804,3 +804,37 @@ def test_gradients_are_the_jets_of_every_coordinate_at_once():
                          for j, b in enumerate(box)], gradients(B))
     for j in range(3):
         assert enclosure.d[j].contains(B.number(gradient.d[j]))
+
+
+def test_a_fold_pair_hidden_by_a_jacobian_right_at_the_points_only_is_found():
+    # x = y^3 - a y has two folds in x at y = +-sqrt(a/3), both between the two points of
+    # this curve. A Jacobian equal to H' at the two points and linear in between made the
+    # fold function look monotone (its slope came from problem.jacobian), and the curve was
+    # proven to have no fold; the slopes now come from the residual's own derivatives
+    a, y0, y1 = 1e-4, -0.04, 0.06
+
+    def fold_slope(y):
+        return 3.0 * y * y - a
+
+    def residual(x, m=FLOATS):
+        return [x[0] - (x[1] * x[1] * x[1] - a * x[1])]
+
+    def jacobian(x, m=FLOATS):
+        return [[1.0 + 0.0 * x[0], -(3.0 * x[1] * x[1] - a)]]
+
+    def jacobian_at_the_points(x, m=FLOATS):
+        q = fold_slope(y0) + (x[1] - y0) * ((fold_slope(y1) - fold_slope(y0)) / (y1 - y0))
+        return [[1.0 + 0.0 * x[0], -q]]
+
+    traced = trace(Problem(residual, jacobian), [y0 ** 3 - a * y0, y0], direction=[0.0, 1.0],
+                   options=Options(max_steps=2, fold_coordinates=()))
+    x = np.array([[y ** 3 - a * y, y] for y in (y0, y1)])
+    tangents = np.array([[fold_slope(y), 1.0] for y in (y0, y1)])
+    tangents /= np.linalg.norm(tangents, axis=1)[:, None]
+    curve = dataclasses.replace(traced, x=x, tangents=tangents,
+                                s=np.array([0.0, np.linalg.norm(x[1] - x[0])]),
+                                special_points=())
+    for given in (jacobian, jacobian_at_the_points):
+        cert = certify(curve, Problem(residual, given), fold_coordinates=(0,))
+        assert not cert.proven and cert.check is Check.FOLD, cert.message
+        assert "where no zero is reported" in cert.message

@@ -141,3 +141,110 @@ def test_an_event_written_with_abs_is_not_proven_monotone_across_its_zeros():
                                 residuals=traced.residuals[:2], special_points=())
     cert = certify(curve, line, [event], fold_coordinates=())
     assert not cert.proven and "phi" in cert.message, cert.message
+
+
+@pytest.mark.parametrize("u", [0.0, 1e-8, -0.003, 0.05, 0.0999, 0.1, 0.5, -3.7, 20.0])
+def test_higher_derivatives_of_sinc_are_enclosed(u):
+    # gradients over jets (the fold functions' slopes in certification) need sinc^(j) up to
+    # j = 4: against python-flint's power series of sin(u + t) / (u + t) at 300 bits
+    flint = pytest.importorskip("flint")
+    B = balls()
+    floats = FLOATS.sinc_derivatives(u, 4)
+    for bits in (53, 128):  # 128: square_box's second try
+        with B.precision(bits):
+            got = [B.sinc_derivatives(u, 4), B.sinc_derivatives(u, 2)]
+            if u == 0.0:
+                one = flint.arb(1)
+                want = [one, 0 * one, -one / 3, 0 * one, one / 5]  # exact: 1/3 is no float
+                # a ball centred at 0 (python-flint's power of one is NaN)
+                got.append(B.sinc_derivatives(B.arb(0.0, 1e-10), 4))
+            else:
+                with B.precision(300):
+                    t = flint.arb_series([flint.arb(u), 1], prec=5)
+                    coefficients = (t.sin() / t).coeffs()
+                    want = [coefficients[j] * math.factorial(j) for j in range(5)]
+            for values in got:
+                for value, exact in zip(values, want):
+                    assert value.contains(exact) and float(value.rad()) < 1e-9, (bits, value)
+    for j in range(5):
+        assert floats[j] == pytest.approx(float(want[j]), rel=1e-10, abs=1e-11)
+
+
+@pytest.mark.parametrize("g, h, q", [((0.3, -0.1), (0.0, 0.0), (0.0, 0.0)),
+                                     ((1.0, 2.0), (0.5, -0.7), (0.0, 0.0)),
+                                     ((0.0, 0.0), (1.0, 1.0), (2.0, 0.0)),
+                                     ((2.0, -1.0), (0.4, 0.4), (-3.0, 1.0)),
+                                     ((0.0, 0.0), (0.0, 0.0), (0.0, 0.0))])
+@pytest.mark.parametrize("second", [False, True])
+def test_the_remainder_of_a_quadrature_encloses_its_mixed_derivatives(g, h, q, second):
+    """Gradients over jets (the slopes of the fold functions, from the residual): the
+    remainder's derivative along a coordinate ``y`` and its derivatives along ``s``, for
+    ``E(a) = eps sin(a0 + a1)`` with ``a(s, y) = a + d s + dd s^2/2 + y (g + h s + q s^2/2)``."""
+    pytest.importorskip("flint")
+    from continuation.gradients import Gradient, gradients
+
+    B = balls()
+    m = gradients(jets(B))
+    eps, a, d, dd = 1e-9, (0.4, 0.7), (0.3, -0.8), (1.5, 0.5)
+
+    def bound(intervals, w):
+        return eps * math.cosh(2.0 * w)
+
+    def jet(v, dv, ddv):
+        return Jet(B.number(v), B.number(dv), B.number(ddv) if second else None)
+
+    args = tuple(Gradient(jet(a[i], d[i], dd[i]), (jet(g[i], h[i], q[i]), jet(0.0, 0.0, 0.0)))
+                 for i in range(2))
+    error = m.analytic_error(bound, args)
+    S, W, W2 = sum(a), sum(d), sum(dd)
+    G, H, Q = sum(g), sum(h), sum(q)
+    c, s = eps * math.cos(S), eps * math.sin(S)
+    along = error.d[0]
+    assert along.v.contains(c * G)
+    assert along.d.contains(-s * W * G + c * H)
+    if second:
+        assert along.dd.contains(-c * W * W * G - s * W2 * G - 2.0 * s * W * H + c * Q)
+    else:
+        assert along.dd is None
+    assert error.d[1].v == 0.0 and error.d[1].d == 0.0  # nothing moves along y_1
+    assert error.v.v.contains(s) and error.v.d.contains(c * W)
+
+
+def test_a_jet_is_a_number_of_gradients_over_jets():
+    # a jet (constant along the gradients' coordinates) plus a gradient put the gradient
+    # inside the jet's value, and derivative() dropped its derivatives: H = E + (y^3 - a y)
+    # with a remainder E of constant arguments lost dH/dy (an adversarial review)
+    pytest.importorskip("flint")
+    from continuation.gradients import Gradient, gradients
+
+    B = balls()
+    m = gradients(jets(B))
+    y = Gradient(Jet(B.number(0.01), B.number(1.0)), (Jet(B.number(1.0), B.number(0.0)),))
+    constant = Jet(B.number(2.0), B.number(3.0))
+    for value in (constant + y, y + constant, constant - y, constant * y, constant / y):
+        assert type(value) is Gradient and type(value.v) is Jet
+    assert (constant * y).d[0].v.contains(2.0) and (constant * y).d[0].d.contains(3.0)
+    assert (constant - y).d[0].v.contains(-1.0)
+    # a remainder whose arguments do not move is a base number, of any order
+    for second in (None, B.number(0.0)):
+        x = Jet(B.number(0.3), B.number(1.0), second)
+        E = jets(B).analytic_error(lambda intervals, w: 1e-12, (0.5,))
+        total = x * x + E
+        assert type(total) is Jet and (total.dd is None) == (second is None)
+    E = m.analytic_error(lambda intervals, w: 1e-12, (0.5,))
+    assert type(y * y * y + E) is Gradient
+
+
+def test_mixed_remainder_derivatives_at_absurd_speeds_are_not_finite_not_a_crash():
+    # r t underflowed to 0 at speeds near 1e200: ZeroDivisionError
+    pytest.importorskip("flint")
+    from continuation.gradients import Gradient, gradients
+
+    B = balls()
+    m = gradients(jets(B))
+    for speed in (1e200, 1e300, math.inf):
+        args = tuple(Gradient(Jet(B.number(0.4), B.number(speed), B.number(0.0)),
+                              (Jet(B.number(1.0), B.number(speed), B.number(0.0)),))
+                     for _ in range(2))
+        error = m.analytic_error(lambda intervals, w: 1e-9 * math.cosh(2.0 * w), args)
+        assert type(error) is Gradient  # finite or not, an enclosure
