@@ -7,12 +7,13 @@ from typing import cast
 
 import numpy as np
 
+from .krawczyk import derivative
 from .numbers import FLOATS, Jet, jets
 from .result import Curve, SpecialKind
 
 __all__ = ["JACOBIAN_TOL", "jacobian_mismatch", "not_certifiable"]
 
-#: problem.jacobian may differ from the residual's derivative (its jets, in floats) by this
+#: problem.jacobian may differ from the residual's derivative (in floats) by this
 #: fraction of ``1 + max |row|`` at a point of the curve (rounding is some 1e-16 of it)
 JACOBIAN_TOL = 1e-8
 
@@ -52,25 +53,23 @@ def jacobian_mismatch(curve: Curve, problem) -> tuple | None:
     """Where ``problem.jacobian`` is not the derivative of ``problem.residual``: the reason and
     the point, or ``None``.
 
-    The proof takes ``jacobian`` to be the derivative of ``residual`` (Krawczyk's operator and
-    the curve's tangents are built on it), so a wrong one could prove a false curve. At every
-    point of the curve, each column is compared, in floats, with the residual's forward-mode
-    derivative (:func:`continuation.numbers.jets`), to :data:`JACOBIAN_TOL`. A check at the
-    points, not a proof: a Jacobian that is wrong only between them is not caught.
+    The proof differentiates the residual itself; ``jacobian`` traced the curve and serves the
+    proof in floats only (preconditioners). A wrong one would make the proof fail somewhere
+    obscure, so it is named here: at every point of the curve it is compared, in floats, with
+    the residual's forward-mode derivative (:func:`continuation.krawczyk.derivative`), to
+    :data:`JACOBIAN_TOL`. A check at the points: one wrong only between them is not caught
+    here (nor trusted by the proof).
     """
-    m = jets(FLOATS)
     for i, x in enumerate(curve.x.tolist()):
         J = np.array(problem.jacobian(x, FLOATS), dtype=float)
-        for j in range(len(x)):
-            row = problem.residual([Jet(v, float(c == j)) for c, v in enumerate(x)], m)
-            column = np.array([r.d if type(r) is Jet else 0.0 for r in row], dtype=float)
-            error = np.abs(J[:, j] - column)
-            allowed = JACOBIAN_TOL * (1.0 + np.max(np.abs(J), axis=1))
-            if not np.all(error <= allowed):
-                r = int(np.argmax(error - allowed))
-                return (f"problem.jacobian is not the derivative of problem.residual at point "
-                        f"{i}: entry ({r}, {j}) is {float(J[r, j])!r}, the residual's derivative "
-                        f"{float(column[r])!r}", i)
+        D = np.array(derivative(problem, x, FLOATS), dtype=float)
+        excess = np.abs(J - D) - JACOBIAN_TOL * (1.0 + np.max(np.abs(J), axis=1))[:, None]
+        if not np.all(excess <= 0.0):  # (NaN included)
+            r, j = np.unravel_index(int(np.argmax(np.nan_to_num(excess, nan=np.inf))),
+                                    J.shape)
+            return (f"problem.jacobian is not the derivative of problem.residual at point "
+                    f"{i}: entry ({r}, {j}) is {float(J[r, j])!r}, the residual's derivative "
+                    f"{float(D[r, j])!r}", i)
     return None
 
 

@@ -14,7 +14,7 @@ import math
 from itertools import repeat
 from operator import add, mul, neg, sub, truediv
 
-from .numbers import _WIDENINGS, FLOATS, Jet, _ComparedByValue, _Derivatives, _Jets, _largest
+from .numbers import _WIDENINGS, FLOATS, Jet, _ComparedByValue, _Derivatives, _Jets, _largest, jets
 
 __all__ = ["Gradient", "gradients"]
 
@@ -120,6 +120,29 @@ class _Gradients(_Derivatives):
     def sinc(self, a):
         f = self.base.sinc_derivatives(self.value(a), 1)
         return _gradient_chain(a, f[0], f[1])
+
+    def local(self, f, a):
+        """``f(a)`` with ``f`` and ``f'`` from one jet through ``f`` (over the base numbers; over
+        jets, a second-order jet gives ``f``, ``f'`` and ``f''`` at the value, which the jets of
+        ``f(a)`` and ``f'(a)`` need), then the chain rule ``d f(a) = f'(a) da`` on every
+        coordinate. Over second-order jets: ``f`` in gradients, as written."""
+        if type(a) is not Gradient:
+            return f(a, self.base)
+        base, v = self.base, a.v
+        if type(base) is _Jets and type(v) is Jet:
+            if v.dd is not None:
+                return f(a, self)
+            inner = base.base
+            r = f(Jet(v.v, inner.number(1.0), inner.number(0.0)), base)
+            if type(r) is not Jet:
+                return r
+            value, slope = Jet(r.v, r.d * v.d), Jet(r.d, r.dd * v.d)
+        else:
+            r = f(Jet(v, base.number(1.0)), jets(base) if type(base) is not _Jets else base)
+            if type(r) is not Jet:
+                return r
+            value, slope = r.v, r.d
+        return Gradient(value, tuple(map(mul, repeat(slope), a.d)))
 
     def analytic_error(self, bound, args):
         """The remainder ``E(args)`` and its derivatives along every coordinate: as

@@ -21,7 +21,9 @@ may use
   the remainder of an approximation of an analytic function of ``args`` (a ball of radius
   ``bound(args, 0)``; with jets, also its derivatives, by Cauchy's estimate from
   ``bound(args, widen)``, the bound over the complex polydisc of radius ``widen`` around the
-  arguments).
+  arguments), ``m.bounds(x)`` (floats enclosing a rigorous number's value) and
+  ``m.local(f, a)``: ``f(a, m)`` for a function of one number, its derivatives through one
+  jet (cheaper in gradients than ``f`` over them).
 
 Four implementations: :data:`FLOATS` (``math``; the hot path), :data:`ARRAYS` (numpy float
 arrays, elementwise: one formula at many points at once, with the operations of
@@ -134,6 +136,11 @@ class _Floats:
     @staticmethod
     def analytic_error(bound, args) -> float:
         return 0.0
+
+    @staticmethod
+    def local(f, a):
+        """``f(a, numbers)`` for a function ``f`` of one number (see :meth:`_Derivatives.local`)."""
+        return f(a, FLOATS)
 
     @staticmethod
     def is_finite(x) -> bool:
@@ -314,6 +321,9 @@ class _Balls:
     def analytic_error(self, bound, args):
         return self.error(bound(tuple(self.bounds(a) for a in args), 0.0))
 
+    def local(self, f, a):
+        return f(a, self)
+
     def is_finite(self, x) -> bool:
         return x.is_finite()
 
@@ -471,6 +481,10 @@ class _Derivatives:
     def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
         return self.base.gauss_legendre(n, panels)
 
+    def bounds(self, x) -> tuple[float, float]:
+        """``(lo, hi)`` of the value (rigorous bases only)."""
+        return self.base.bounds(self.value(x))
+
     def is_finite(self, x) -> bool:
         if type(x) is not self.kind:
             return self.base.is_finite(x)
@@ -480,6 +494,13 @@ class _Derivatives:
     def parts(x) -> tuple:
         """The value and derivatives of a number of ``kind``."""
         raise NotImplementedError
+
+    def local(self, f, a):
+        """``f(a, numbers)`` for a function ``f(u, m)`` of one number written over a numbers
+        namespace: the same value, and derivatives by the chain rule through ``f``'s own
+        derivative where that is cheaper (gradients: one direction inside ``f`` instead of
+        every coordinate; Griewank & Walther's preaccumulation). Jets: ``f`` itself."""
+        return f(a, self)
 
 
 class _Jets(_Derivatives):

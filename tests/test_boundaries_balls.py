@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from continuation.certify_input import jacobian_mismatch
 from continuation.krawczyk import derivative
 from continuation.numbers import FLOATS, Jet, jets
+from groove_model.model import deflation
 from groove_model.model.boundaries import BOUNDARY_NAMES, BoundarySystem
 from groove_model.model.parameters import Compliance, Parameters
 from groove_model.tracing import trace_boundaries
@@ -151,3 +152,52 @@ def test_the_jacobians_derivatives_from_the_residual_agree_with_the_jacobians_je
                         assert B.number(g).overlaps(B.number(w)), (system, part, g, w)
                         if width == 0.0 and part != "dd":
                             assert B.is_finite(B.number(g)), (system, part)
+
+
+@pytest.mark.parametrize("rule", deflation.BALL_RULES)
+def test_every_ball_quadrature_of_the_deflated_torque_encloses_it(rule, monkeypatch):
+    # the ball quadrature takes the fewest points whose remainder is estimated below
+    # BALL_TOLERANCE; each rule, forced, must enclose g (with its own remainder), and the
+    # rule chosen must be within the tolerance where a rule is
+    mpmath = pytest.importorskip("mpmath")
+    mpmath.mp.dps = 50
+
+    def f(beta):
+        return mpmath.sqrt(mpmath.sin(beta)) * mpmath.cos(beta)
+
+    system = BoundarySystem("dr_no_roll", Parameters(10.0), "sqrt_beta_L", conditioned=True)
+    monkeypatch.setattr(deflation, "BALL_RULES", (rule,))
+    for gamma in (0.7, 0.9, 1.1):
+        for d in (0.0, 1e-6, 0.01, 0.1, 0.3, 0.59):
+            beta_L = 0.5 * (math.pi - 2 * gamma + d)
+            y = [gamma, 0.1, math.sqrt(beta_L), 0.0]
+            exact_bL = (mpmath.pi - 2 * mpmath.mpf(gamma) + mpmath.mpf(d)) / 2
+            if mpmath.sqrt(exact_bL) != mpmath.mpf(y[2]):  # the float chart coordinate
+                exact_bL = mpmath.mpf(y[2]) ** 2
+            exact_bR = mpmath.pi - 2 * mpmath.mpf(gamma) - exact_bL
+            dd = exact_bL - exact_bR
+            g = (mpmath.diff(f, exact_bR) if dd == 0 else (f(exact_bL) - f(exact_bR)) / dd)
+            ball = system.residual(y, B)[0]
+            assert ball.contains(B.arb(mpmath.nstr(g, 40))) or abs(
+                float(ball.mid()) - float(g)) < float(ball.rad()), (rule, gamma, d)
+
+
+def test_the_cheapest_ball_quadrature_keeps_its_remainder_below_the_tolerance():
+    system = BoundarySystem("dr_no_roll", Parameters(10.0), "sqrt_beta_L", conditioned=True)
+    widths = {}
+    for rule in deflation.BALL_RULES:
+        # with one rule forced, the ball's radius is its remainder plus rounding
+        deflation_rules = deflation.BALL_RULES
+        try:
+            deflation.BALL_RULES = (rule,)
+            widths[rule] = [float(system.residual([0.9, 0.1, math.sqrt(0.5 * (
+                math.pi - 1.8 + d)), 0.0], B)[0].rad()) for d in (0.01, 0.1, 0.3, 0.5)]
+        finally:
+            deflation.BALL_RULES = deflation_rules
+    chosen = [float(system.residual([0.9, 0.1, math.sqrt(0.5 * (math.pi - 1.8 + d)), 0.0],
+                                    B)[0].rad()) for d in (0.01, 0.1, 0.3, 0.5)]
+    for i, radius in enumerate(chosen):
+        assert radius <= max(10.0 * deflation.BALL_TOLERANCE,
+                             min(w[i] for w in widths.values()) * 1.01)
+    # and it is not the most expensive rule everywhere: close to the family, a few points
+    assert chosen[0] <= 10.0 * deflation.BALL_TOLERANCE

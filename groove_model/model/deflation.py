@@ -12,8 +12,9 @@ with ``g`` in place of the torque the branch point is a regular point (deflation
 Georg sec. 8.3). ``g`` is the quotient where ``|beta_L - beta_R| >= 0.05`` and a 6-point
 Gauss-Legendre quadrature of ``f'`` closer to the family, where the quotient would cancel; in
 ball arithmetic, where the quotient would amplify the balls' width instead, the quadrature
-has 12 points and is used up to ``|beta_L - beta_R| < 0.3``. Both are exact formulas for the
-same ``g`` where they are used (the quadrature's remainder, below rounding in floats, is
+is used up to ``|beta_L - beta_R| < 0.6``, with the fewest points (4 to 12, on one or two
+panels) whose remainder is estimated below ``1e-13`` on the box. All are exact formulas for
+the same ``g`` where they are used (the quadrature's remainder, below rounding in floats, is
 carried in balls).
 
 The float quadrature is exact to rounding where both angles exceed about 0.3, which holds all
@@ -45,12 +46,19 @@ __all__ = ["deflated_torque", "f1", "f2"]
 DIVIDED_SWITCH = 0.05
 
 #: the same in ball arithmetic, where the quotient would amplify the width of wide balls by
-#: 1/d^2 (its Jacobian row) and the quadrature does not: 12 nodes, on two panels where
-#: |d| >= 0.3, keep its remainder below about 1e-13 there
+#: 1/d^2 (its derivatives) and the quadrature does not
 BALL_SWITCH = 0.6
 
-#: Gauss-Legendre nodes in floats (error O(d^12), below rounding where it is used) and balls
-NODES = {False: 6, True: 12}
+#: Gauss-Legendre nodes in floats (error O(d^12), below rounding where it is used)
+FLOAT_NODES = 6
+
+#: the ball quadratures, ``(nodes, panels)`` in order of cost: the first whose remainder is
+#: estimated below :data:`BALL_TOLERANCE` is taken (the last, the most accurate, where none
+#: is: below about 1e-13 along the boundaries, where both angles exceed about 0.6)
+BALL_RULES = ((4, 1), (6, 1), (8, 1), (10, 1), (12, 1), (8, 2), (10, 2), (12, 2))
+
+#: the remainder the ball quadrature is chosen for
+BALL_TOLERANCE = 1e-13
 
 
 def _gauss_constant(n: int) -> float:
@@ -58,9 +66,6 @@ def _gauss_constant(n: int) -> float:
     exact = Fraction(math.factorial(n) ** 4, (2 * n + 1) * math.factorial(2 * n) ** 3)
     value = float(exact)
     return value if Fraction(value) >= exact else math.nextafter(value, math.inf)
-
-
-_GAUSS = _gauss_constant(NODES[True])
 
 
 def f1(beta, m):
@@ -93,7 +98,7 @@ def _derivative_bound(order: int, real: tuple, imag: float) -> float:
     return math.nextafter(float(bound.upper()), math.inf) if bound.is_finite() else math.inf
 
 
-def _remainder_bound(weighted: bool, panels: int):
+def _remainder_bound(weighted: bool, panels: int, n: int):
     """``bound(intervals, widen)`` of the ball quadrature's remainder for ``g`` (or the ``t``-
     and ``(1 - t)``-weighted integrals of ``f''`` in its Jacobian row): ``n`` nodes on each of
     ``P`` panels.
@@ -106,7 +111,7 @@ def _remainder_bound(weighted: bool, panels: int):
     ``(d/P)^(2n) |f^(2n+2)| + (2n/P) (d/P)^(2n-1) |f^(2n+1)|``. The panels' errors add up to
     ``P (1/P)`` times that, times the constant.
     """
-    n2 = 2 * NODES[True]
+    n2, gauss = 2 * n, _gauss_constant(n)
 
     def bound(intervals, widen: float) -> float:
         (r_lo, r_hi), (d_lo, d_hi) = intervals
@@ -115,17 +120,39 @@ def _remainder_bound(weighted: bool, panels: int):
         first = _derivative_bound(n2 + 1, real, 2.0 * widen)
         if weighted:
             second = _derivative_bound(n2 + 2, real, 2.0 * widen)
-            value = _GAUSS * (size ** n2 * second + n2 / panels * size ** (n2 - 1) * first)
+            value = gauss * (size ** n2 * second + n2 / panels * size ** (n2 - 1) * first)
         else:
-            value = _GAUSS * size ** n2 * first
+            value = gauss * size ** n2 * first
         return value * (1.0 + 1e-12)  # a few float roundings of positive terms
 
     return bound
 
 
-#: the remainder bounds of g and of its Jacobian row, on one and on two panels
-_BOUNDS = {panels: (_remainder_bound(False, panels), _remainder_bound(True, panels))
-           for panels in (1, 2)}
+#: the remainder bounds of g and of its Jacobian row, for each ball rule
+_BOUNDS = {rule: (_remainder_bound(False, rule[1], rule[0]),
+                  _remainder_bound(True, rule[1], rule[0])) for rule in BALL_RULES}
+
+
+def _ball_rule(beta_R, d, m) -> tuple[int, int]:
+    """The cheapest of :data:`BALL_RULES` whose remainder for ``g`` is estimated below
+    :data:`BALL_TOLERANCE` over the balls ``beta_R`` and ``d`` (in floats, by the logarithm of
+    the bound of :func:`_remainder_bound` at ``widen = 0``: an estimate only chooses the rule;
+    its remainder is then bounded rigorously, whichever it is)."""
+    r_lo, r_hi = m.bounds(beta_R)
+    d_lo, d_hi = m.bounds(d)
+    margin = min(r_lo, r_lo + d_lo, math.pi - max(r_hi, r_hi + d_hi))
+    size = max(abs(d_lo), abs(d_hi))
+    if not margin > 0.0 or not size > 0.0:
+        return BALL_RULES[-1] if not size == 0.0 else BALL_RULES[0]
+    rho = 0.9 * margin
+    log_cosh = 1.5 * math.log(math.cosh(rho))
+    for n, panels in BALL_RULES:
+        order = 2 * n + 1
+        log_bound = (math.log(_gauss_constant(n)) + 2 * n * math.log(size / panels)
+                     + math.lgamma(order + 1) + log_cosh - order * math.log(rho))
+        if log_bound < math.log(BALL_TOLERANCE):
+            return n, panels
+    return BALL_RULES[-1]
 
 
 def deflated_torque(gamma, beta_L, q_L, b1, dq_L, jacobian, m):
@@ -147,11 +174,11 @@ def deflated_torque(gamma, beta_L, q_L, b1, dq_L, jacobian, m):
         g_R = (g - f1(beta_R, m)) / d                  # d g / d beta_R
         g_var = (dF_L - g * b1) / d - g_R * b1
     else:
-        panels = 1 if not m.rigorous or abs(d) < 0.3 else 2
-        nodes = m.gauss_legendre(NODES[m.rigorous], panels)
-        g = sum(w * f1(beta_R + t * d, m) for t, w in nodes)
+        rule = _ball_rule(beta_R, d, m) if m.rigorous else (FLOAT_NODES, 1)
+        nodes = m.gauss_legendre(*rule)
+        g = sum(w * m.local(f1, beta_R + t * d) for t, w in nodes)  # (f1's derivative: f2)
         if m.rigorous:
-            g = g + m.analytic_error(_BOUNDS[panels][0], (beta_R, d))
+            g = g + m.analytic_error(_BOUNDS[rule][0], (beta_R, d))
         if not jacobian:
             return g, None
         second = [(t, w, f2(beta_R + t * d, m)) for t, w in nodes]
@@ -159,7 +186,7 @@ def deflated_torque(gamma, beta_L, q_L, b1, dq_L, jacobian, m):
         g_LR = sum(w * (2.0 * t - 1.0) * f2_t for t, w, f2_t in second)
         g_R = sum(w * (1.0 - t) * f2_t for t, w, f2_t in second)
         if m.rigorous:
-            g_LR = g_LR + 2.0 * m.analytic_error(_BOUNDS[panels][1], (beta_R, d))
-            g_R = g_R + m.analytic_error(_BOUNDS[panels][1], (beta_R, d))
+            g_LR = g_LR + 2.0 * m.analytic_error(_BOUNDS[rule][1], (beta_R, d))
+            g_R = g_R + m.analytic_error(_BOUNDS[rule][1], (beta_R, d))
         g_var = g_LR * b1
     return g, (-2.0 * g_R, 0.0, g_var, 0.0)

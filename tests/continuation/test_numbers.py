@@ -248,3 +248,36 @@ def test_mixed_remainder_derivatives_at_absurd_speeds_are_not_finite_not_a_crash
                      for _ in range(2))
         error = m.analytic_error(lambda intervals, w: 1e-9 * math.cosh(2.0 * w), args)
         assert type(error) is Gradient  # finite or not, an enclosure
+
+
+@pytest.mark.parametrize("second", [False, True])
+def test_local_gives_the_numbers_of_the_function_itself(second):
+    # m.local(f, a): f of one number with its derivative through one jet and the chain rule
+    # (the deflated torque's quadrature); the same value and derivatives as f over m
+    pytest.importorskip("flint")
+    from continuation.gradients import Gradient, gradients
+
+    def f(u, m):
+        s, c = m.sin(u), m.cos(u)
+        q = m.sqrt(s)
+        return c * c / (2.0 * q) - s * q + m.sinc(u * u)
+
+    B = balls()
+    for base in (FLOATS, B, jets(B)):
+        m = gradients(base)
+        if base is FLOATS:
+            v = 0.7
+        elif base is B:
+            v = B.arb(0.7, 1e-9)
+        else:
+            v = Jet(B.arb(0.7, 1e-9), B.number(0.4), B.number(-0.3) if second else None)
+        a = Gradient(v, (base.number(1.5), base.number(0.0), base.number(-2.0)))
+        ours, plain = m.local(f, 3.0 * a - 1.4), f(3.0 * a - 1.4, m)
+        for x, y in zip(m.parts(ours), m.parts(plain)):
+            for p, q in zip(*((z.v, z.d) + (() if z.dd is None else (z.dd,))
+                              if type(z) is Jet else (z,) for z in (x, y))):
+                if base is FLOATS:
+                    assert p == pytest.approx(q, rel=1e-13, abs=1e-14)
+                else:
+                    assert B.number(p).overlaps(B.number(q)) and B.is_finite(B.number(p))
+    assert FLOATS.local(f, 0.7) == f(0.7, FLOATS) and jets(B).local(f, B.arb(0.7)) is not None
