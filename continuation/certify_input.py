@@ -63,7 +63,8 @@ def jacobian_mismatch(curve: Curve, problem) -> tuple | None:
     for i, x in enumerate(curve.x.tolist()):
         J = np.array(problem.jacobian(x, FLOATS), dtype=float)
         D = np.array(derivative(problem, x, FLOATS), dtype=float)
-        excess = np.abs(J - D) - JACOBIAN_TOL * (1.0 + np.max(np.abs(J), axis=1))[:, None]
+        size = np.max(np.where(np.isfinite(J), np.abs(J), 0.0), axis=1)  # (NaN: its own entry)
+        excess = np.abs(J - D) - JACOBIAN_TOL * (1.0 + size)[:, None]
         if not np.all(excess <= 0.0):  # (NaN included)
             r, j = np.unravel_index(int(np.argmax(np.nan_to_num(excess, nan=np.inf))),
                                     J.shape)

@@ -98,6 +98,15 @@ def _derivative_bound(order: int, real: tuple, imag: float) -> float:
     return math.nextafter(float(bound.upper()), math.inf) if bound.is_finite() else math.inf
 
 
+def _times_power(c: float, size: float, p: int) -> float:
+    """``c size^p`` (``c, size >= 0``), never rounded down to 0 where it is positive: where
+    ``size^p`` underflows, from logarithms (rounded up), at least the smallest float."""
+    value = c * size ** p
+    if value > 1e-290 or c == 0.0 or size == 0.0 or not math.isfinite(value):
+        return value
+    return max(math.exp(math.log(c) + p * math.log(size)) * (1.0 + 1e-10), 5e-324)
+
+
 def _remainder_bound(weighted: bool, panels: int, n: int):
     """``bound(intervals, widen)`` of the ball quadrature's remainder for ``g`` (or the ``t``-
     and ``(1 - t)``-weighted integrals of ``f''`` in its Jacobian row): ``n`` nodes on each of
@@ -120,9 +129,10 @@ def _remainder_bound(weighted: bool, panels: int, n: int):
         first = _derivative_bound(n2 + 1, real, 2.0 * widen)
         if weighted:
             second = _derivative_bound(n2 + 2, real, 2.0 * widen)
-            value = gauss * (size ** n2 * second + n2 / panels * size ** (n2 - 1) * first)
+            value = gauss * (_times_power(second, size, n2)
+                             + _times_power(n2 / panels * first, size, n2 - 1))
         else:
-            value = gauss * size ** n2 * first
+            value = gauss * _times_power(first, size, n2)
         return value * (1.0 + 1e-12)  # a few float roundings of positive terms
 
     return bound

@@ -838,3 +838,17 @@ def test_a_fold_pair_hidden_by_a_jacobian_right_at_the_points_only_is_found():
         cert = certify(curve, Problem(residual, given), fold_coordinates=(0,))
         assert not cert.proven and cert.check is Check.FOLD, cert.message
         assert "where no zero is reported" in cert.message
+
+
+def test_a_jacobian_with_a_nan_entry_is_refused_and_the_entry_named():
+    # a NaN in one entry made the whole row's tolerance NaN: the message named entry (0, 0),
+    # "1.0, the residual's derivative 1.0"
+    def jacobian(x, m=FLOATS):
+        return [[1.0 + 0.0 * x[0], math.nan if abs(x[0]) > 0.25 else -1.0]]
+
+    problem = Problem(lambda x, m=FLOATS: [x[0] - x[1]], jacobian)
+    curve = trace(Problem(LINE.residual, LINE.jacobian), [0.0, 0.0],
+                  options=Options(ds=0.1, ds_max=0.1, max_steps=5))
+    cert = certify(curve, problem, fold_coordinates=())
+    assert not cert.proven and cert.check is Check.INPUT, cert.message
+    assert "entry (0, 1) is nan" in cert.message, cert.message
