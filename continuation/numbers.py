@@ -21,7 +21,8 @@ may use
   the remainder of an approximation of an analytic function of ``args`` (a ball of radius
   ``bound(args, 0)``; with jets, also its derivatives, by Cauchy's estimate from
   ``bound(args, widen)``, the bound over the complex polydisc of radius ``widen`` around the
-  arguments), ``m.bounds(x)`` (floats enclosing a rigorous number's value) and
+  arguments), ``m.bounds(x)`` (floats enclosing a rigorous number's value),
+  ``m.resolution(x)`` (its width, or its rounding if more) and
   ``m.local(f, a)``: ``f(a, m)`` for a function of one number, its derivatives through one
   jet (cheaper in gradients than ``f`` over them).
 
@@ -314,6 +315,13 @@ class _Balls:
         return (math.nextafter(float(x.lower()), -math.inf),
                 math.nextafter(float(x.upper()), math.inf))
 
+    def resolution(self, x) -> float:
+        """The ball's width, or one unit in the last place of its midpoint at the current
+        precision if that is more: what an error below it cannot widen much."""
+        x = self.number(x)
+        ulp = abs(float(x.mid())) * 2.0 ** (1 - self._ctx.prec)
+        return max(2.0 * float(x.rad()), ulp, 1e-300)
+
     def error(self, bound: float):
         """The ball ``[-bound, bound]`` (NaN if ``bound`` is not finite)."""
         return self.arb(0, bound) if math.isfinite(bound) else self.arb.nan()
@@ -484,6 +492,10 @@ class _Derivatives:
     def bounds(self, x) -> tuple[float, float]:
         """``(lo, hi)`` of the value (rigorous bases only)."""
         return self.base.bounds(self.value(x))
+
+    def resolution(self, x) -> float:
+        """The base's resolution of the value (rigorous bases only)."""
+        return self.base.resolution(self.value(x))
 
     def is_finite(self, x) -> bool:
         if type(x) is not self.kind:

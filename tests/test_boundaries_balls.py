@@ -211,3 +211,9 @@ def test_the_cheapest_ball_quadrature_is_taken(monkeypatch):
         n, panels = taken[0]
         assert (n * panels <= 6) if d == 0.01 else (n * panels >= 10), (d, taken)
     assert radii[0] <= 10.0 * deflation.BALL_TOLERANCE
+    # at 128 bits (square_box's second try) the rule is chosen for the balls' rounding, not
+    # for 1e-13: a remainder of 4e-15 once stopped it where 53 bits could not decide
+    monkeypatch.undo()
+    with B.precision(128):
+        y = [0.9, 0.1, math.sqrt(0.5 * (math.pi - 1.8 + 0.01)), 0.0]
+        assert float(system.residual(y, B)[0].rad()) < 1e-36

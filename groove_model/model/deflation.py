@@ -145,22 +145,24 @@ _BOUNDS = {rule: (_remainder_bound(False, rule[1], rule[0]),
 
 def _ball_rule(beta_R, d, m) -> tuple[int, int]:
     """The cheapest of :data:`BALL_RULES` whose remainder for ``g`` is estimated below
-    :data:`BALL_TOLERANCE` over the balls ``beta_R`` and ``d`` (in floats, by the logarithm of
-    the bound of :func:`_remainder_bound` at ``widen = 0``: an estimate only chooses the rule;
-    its remainder is then bounded rigorously, whichever it is)."""
+    :data:`BALL_TOLERANCE` and below the width (or rounding) of the balls ``beta_R`` and ``d``
+    (so a thin box, at 53 bits or at more, is not widened by it), in floats, by the logarithm
+    of the bound of :func:`_remainder_bound` at ``widen = 0``: an estimate only chooses the
+    rule; its remainder is then bounded rigorously, whichever it is."""
     r_lo, r_hi = m.bounds(beta_R)
     d_lo, d_hi = m.bounds(d)
     margin = min(r_lo, r_lo + d_lo, math.pi - max(r_hi, r_hi + d_hi))
     size = max(abs(d_lo), abs(d_hi))
     if not margin > 0.0 or not size > 0.0:
         return BALL_RULES[-1] if not size == 0.0 else BALL_RULES[0]
+    tolerance = min(BALL_TOLERANCE, max(m.resolution(beta_R), m.resolution(d)))
     rho = 0.9 * margin
     log_cosh = 1.5 * math.log(math.cosh(rho))
     for n, panels in BALL_RULES:
         order = 2 * n + 1
         log_bound = (math.log(_gauss_constant(n)) + 2 * n * math.log(size / panels)
                      + math.lgamma(order + 1) + log_cosh - order * math.log(rho))
-        if log_bound < math.log(BALL_TOLERANCE):
+        if log_bound < math.log(tolerance):
             return n, panels
     return BALL_RULES[-1]
 
