@@ -13,9 +13,9 @@ Georg sec. 8.3). ``g`` is the quotient where ``|beta_L - beta_R| >= 0.05`` and a
 Gauss-Legendre quadrature of ``f'`` closer to the family, where the quotient would cancel; in
 ball arithmetic, where the quotient would amplify the balls' width instead, the quadrature
 is used up to ``|beta_L - beta_R| < 0.6``, with the fewest points (4 to 12, on one or two
-panels) whose remainder is estimated below ``1e-13`` on the box. All are exact formulas for
-the same ``g`` where they are used (the quadrature's remainder, below rounding in floats, is
-carried in balls).
+panels) whose remainder is estimated below ``1e-13`` and the box's own width. All are exact
+formulas for the same ``g`` where they are used (the quadrature's remainder, below rounding
+in floats, is carried in balls).
 
 The float quadrature is exact to rounding where both angles exceed about 0.3, which holds all
 along ``dr_no_roll`` (``beta_L + beta_R = pi - 2 gamma >= pi - 2 arctan sqrt 2 = 1.23``); closer
