@@ -177,8 +177,9 @@ class _Run:
 
     def node_jacobian(self, i: int):
         """``H'`` over the box of point ``i``'s zero (computed once, when needed)."""
-        return self._node_jacobians.get(i) or self._node_jacobians.setdefault(
-            i, derivative(self.problem, self.nodes[i].box, self.B))
+        if i not in self._node_jacobians:
+            self._node_jacobians[i] = derivative(self.problem, self.nodes[i].box, self.B)
+        return self._node_jacobians[i]
 
     def inside(self, box, s: int, lo: float = -math.inf, hi: float = math.inf) -> bool:
         """Whether the ball vector ``box`` lies in the tube of segment ``s`` (its interior),

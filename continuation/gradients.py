@@ -70,13 +70,6 @@ class Gradient(_ComparedByValue):
         f1 = -r * r
         return Gradient(r, tuple(map(mul, self.d, repeat(f1))))
 
-    def __pow__(self, n: int):
-        if n == 2:
-            return self * self
-        if n == 3:
-            return self * self * self
-        raise ValueError(f"Gradient ** {n!r}: only the exponents 2 and 3 are supported")
-
     def __abs__(self):
         """As :meth:`Jet.__abs__`: NaN derivatives where the value may be 0."""
         if self.v > 0.0:

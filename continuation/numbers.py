@@ -42,6 +42,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
+from typing import Any
 
 import numpy as np
 
@@ -81,12 +82,12 @@ def _sinc_term(u, j: int, k: int, one=1.0):
     return term
 
 
-def _sinc_series(u, order: int, terms: int):
+def _sinc_series(u, order: int, terms: int, one=1.0):
     """``sinc^(j)(u)`` for ``j <= order`` by ``terms`` terms of their series, or ``None`` where
     ``|u| >= 1/10`` (terms from ``2k >= j``: each falls by more than half there)."""
     if not abs(u) < 0.1:
         return None
-    return [sum(_sinc_term(u, j, k) for k in range((j + 1) // 2, (j + 1) // 2 + terms))
+    return [sum(_sinc_term(u, j, k, one) for k in range((j + 1) // 2, (j + 1) // 2 + terms))
             for j in range(order + 1)]
 
 
@@ -293,12 +294,12 @@ class _Balls:
         tail within twice the first omitted term (the terms fall by more than half each);
         beyond, the recurrence of :func:`_sinc_higher` (at most a factor 10 lost to
         cancellation per order)."""
-        series = None
-        if abs(u) < 0.1:
-            r, one = self.arb(abs(u).upper()), self.arb(1)
-            series = [sum(_sinc_term(u, j, k, one) for k in range((j + 1) // 2, (j + 1) // 2 + 6))
-                      + self.arb(0, (2.0 * abs(_sinc_term(r, j, (j + 1) // 2 + 6, one))).upper())
-                      for j in range(order + 1)]
+        one = self.arb(1)
+        series = _sinc_series(u, order, 6, one)
+        if series is not None:
+            r = self.arb(abs(u).upper())
+            series = [v + self.arb(0, (2.0 * abs(_sinc_term(r, j, (j + 1) // 2 + 6, one))).upper())
+                      for j, v in enumerate(series)]
         return _sinc_higher(u, order, self.sin, self.cos, series)
 
     def gauss_legendre(self, n: int, panels: int = 1) -> tuple:
@@ -344,10 +345,19 @@ def balls() -> _Balls:
 
 class _ComparedByValue:
     """Comparisons of numbers with derivatives (``v`` their value): of the values, for
-    branches in formulas."""
+    branches in formulas; and their small integer powers, as products."""
 
     __slots__ = ()
     v: object
+
+    def __pow__(self, n: int):
+        x: Any = self  # (a jet or a gradient: their own products)
+        if n == 2:
+            return x * x
+        if n == 3:
+            return x * x * x
+        raise ValueError(f"{type(self).__name__} ** {n!r}: only the exponents 2 and 3 are "
+                         "supported")
 
     def __lt__(self, other):
         return self.v < (other.v if type(other) is type(self) else other)
@@ -424,13 +434,6 @@ class Jet(_ComparedByValue):
         d = -self.d * r * r
         dd = None if self.dd is None else (2.0 * self.d * self.d * r - self.dd) * r * r
         return Jet(r, d, dd)
-
-    def __pow__(self, n: int):
-        if n == 2:
-            return self * self
-        if n == 3:
-            return self * self * self
-        raise ValueError(f"Jet ** {n!r}: only the exponents 2 and 3 are supported")
 
     def __abs__(self):
         """``|x|`` as a jet: ``x`` or ``-x`` where the value has one sign (for balls: every

@@ -142,6 +142,10 @@ def _remainder_bound(weighted: bool, panels: int, n: int):
 _BOUNDS = {rule: (_remainder_bound(False, rule[1], rule[0]),
                   _remainder_bound(True, rule[1], rule[0])) for rule in BALL_RULES}
 
+#: ``log(constant (2n + 1)!)`` of each rule's remainder, for :func:`_ball_rule`'s estimates
+_LOG_FACTORS = {n: math.log(_gauss_constant(n)) + math.lgamma(2 * n + 2)
+                for n in {n for n, _ in BALL_RULES}}
+
 
 def _ball_rule(beta_R, d, m) -> tuple[int, int]:
     """The cheapest of :data:`BALL_RULES` whose remainder for ``g`` is estimated below
@@ -157,12 +161,10 @@ def _ball_rule(beta_R, d, m) -> tuple[int, int]:
         return BALL_RULES[-1] if not size == 0.0 else BALL_RULES[0]
     tolerance = min(BALL_TOLERANCE, max(m.resolution(beta_R), m.resolution(d)))
     rho = 0.9 * margin
-    log_cosh = 1.5 * math.log(math.cosh(rho))
+    log_room = math.log(tolerance) - 1.5 * math.log(math.cosh(rho))
     for n, panels in BALL_RULES:
-        order = 2 * n + 1
-        log_bound = (math.log(_gauss_constant(n)) + 2 * n * math.log(size / panels)
-                     + math.lgamma(order + 1) + log_cosh - order * math.log(rho))
-        if log_bound < math.log(tolerance):
+        if (_LOG_FACTORS[n] + 2 * n * math.log(size / panels)
+                - (2 * n + 1) * math.log(rho)) < log_room:
             return n, panels
     return BALL_RULES[-1]
 

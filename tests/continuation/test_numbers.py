@@ -281,3 +281,16 @@ def test_local_gives_the_numbers_of_the_function_itself(second):
                 else:
                     assert B.number(p).overlaps(B.number(q)) and B.is_finite(B.number(p))
     assert FLOATS.local(f, 0.7) == f(0.7, FLOATS) and jets(B).local(f, B.arb(0.7)) is not None
+
+
+def test_small_powers_of_jets_and_gradients_are_products():
+    from continuation.gradients import Gradient
+
+    for x in (Jet(2.0, 1.0, 0.5), Gradient(2.0, (1.0, -3.0))):
+        square, cube = x ** 2, x ** 3
+        assert square.v == 4.0 and cube.v == 8.0
+        d = square.d if type(x) is Jet else square.d[1]
+        assert d == (4.0 if type(x) is Jet else -12.0)  # 2 x x'
+        with pytest.raises(ValueError, match=rf"{type(x).__name__} \*\* 4: only the exponents "
+                                             "2 and 3"):
+            x ** 4
