@@ -4,6 +4,7 @@ import json
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -128,3 +129,23 @@ def test_the_floor_steps_stay_on_the_curve(monkeypatch, capsys):
     rows = capsys.readouterr().out.splitlines()
     assert [row.split(" | ")[0] for row in rows[2:]] == ["| 1", "| 10"]
     assert all("evaluations" in row and "points" in row for row in rows[2:])
+
+
+def test_the_batching_table_has_every_part_and_leaves_the_engine_as_it_was(capsys):
+    """benchmarks/batching.py times each part of a few traces and restores what it wrapped:
+    traces after it run the engine's own functions again, and give the same curves."""
+    from benchmarks import batching
+    from groove_model import trace_boundaries
+
+    before = trace_boundaries(3.0)
+    originals = [getattr(owner, name) for owner, name in batching.WRAPPED]
+    assert batching.main(["-n", "2"]) == 0
+    out = capsys.readouterr().out
+    for part in ("plain accepted steps", "other accepted steps", "rejected steps",
+                 "locating special points", "assembly of the curves", "limit distance check",
+                 "everything but the plain steps"):
+        assert part in out
+    assert [getattr(owner, name) for owner, name in batching.WRAPPED] == originals
+    after = trace_boundaries(3.0)
+    for name, curve in before.curves.items():
+        assert np.array_equal(curve.x, after.curves[name].x)

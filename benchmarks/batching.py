@@ -1,0 +1,173 @@
+"""Where a sweep's time goes, and what a tracer batched over ``k`` could take off it.
+
+    python3 benchmarks/batching.py [-n 100]
+
+Issue 14's third target (1000 ``k`` in 5 s serially) leaves 5 ms per ``k``; the serial tracer
+takes about 55. ``benchmarks/floor.py`` shows that stepping many ``k`` at once through the
+model's array form costs a few microseconds per lane and step. This script measures, over
+``-n`` values of ``k`` log-spaced over ``[1e-4, 1e6]`` (``trace_boundaries`` with its
+defaults), how much of the time such batching could reach:
+
+* the time per ``k`` by part: the engine's steps (``continuation.tracker``), split into
+  *plain* accepted steps (every event and fold coordinate cleared by the tests on the step's
+  end points, nothing bracketed or located), the other accepted steps (a bracket scan, a
+  located special point), and rejected steps; the special points' location inside them
+  (``locate_zero``); the rest of the engine (start, end checks); the tracer's assembly of each
+  curve (``assemble``), the limit curve's distance check and the topology check;
+* the steps per ``k`` of each kind.
+
+Plain steps are the ones a batched engine can take for all lanes at once with the same tests
+as the serial one; everything else is per lane: in serial Python unless it is batched too.
+The timers wrap the engine's functions in this process (``time.perf_counter``, a few
+microseconds per call on top), so the parts add up to slightly more than an untimed run.
+Times are one run on a shared machine: compare parts within a run, not runs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import functools
+import time
+from collections import Counter
+
+import numpy as np
+
+import continuation.special as special
+import continuation.tracker as tracker
+import groove_model.tracing.tracer as tracer
+from continuation.scan import StepScan
+from groove_model import trace_boundaries
+
+K_RANGE = (1e-4, 1e6)
+
+#: what the timers wrap, ``(owner, attribute)``, in the order of the wrappers
+WRAPPED = [(tracker._Stepper, "step"), (tracker._Stepper, "_reject"), (tracker, "scan_step"),
+           (StepScan, "_brackets"), (special, "locate_zero"), (tracer, "trace_curve"),
+           (tracer, "assemble"), (tracer, "_limit_distance"), (tracer, "_check")]
+
+
+class _Tally:
+    """Seconds and counts per part, and the kind of the step being taken."""
+
+    def __init__(self) -> None:
+        self.seconds: Counter = Counter()
+        self.counts: Counter = Counter()
+        self.scanned = False   # the current step called the bracket scan
+        self.found = False     # the current step located a special point
+        self.rejected = False  # the current step was rejected
+
+
+def _timed(tally: _Tally, part: str, function):
+    @functools.wraps(function)
+    def wrapper(*args, **kwargs):
+        start = time.perf_counter()
+        try:
+            return function(*args, **kwargs)
+        finally:
+            tally.seconds[part] += time.perf_counter() - start
+            tally.counts[part] += 1
+    return wrapper
+
+
+@contextlib.contextmanager
+def _instrumented(tally: _Tally):
+    """The engine's and the tracer's functions wrapped by timers, restored on exit."""
+    originals = [(owner, name, getattr(owner, name)) for owner, name in WRAPPED]
+    step, reject, scan, brackets = (original for _, _, original in originals[:4])
+
+    def stepped(self):
+        tally.scanned = tally.found = tally.rejected = False
+        start = time.perf_counter()
+        step(self)
+        seconds = time.perf_counter() - start
+        kind = ("rejected" if tally.rejected else
+                "scanned" if tally.scanned or tally.found else "plain")
+        tally.seconds[f"step {kind}"] += seconds
+        tally.counts[f"step {kind}"] += 1
+
+    def rejected(self, *args, **kwargs):
+        tally.rejected = True
+        return reject(self, *args, **kwargs)
+
+    def scanned(*args, **kwargs):
+        found = scan(*args, **kwargs)
+        tally.found = tally.found or bool(found)
+        return found
+
+    def bracketed(self, *args, **kwargs):
+        tally.scanned = True
+        return brackets(self, *args, **kwargs)
+
+    patches = [stepped, rejected, scanned, bracketed,
+               _timed(tally, "locate", special.locate_zero),
+               _timed(tally, "engine", tracer.trace_curve),
+               _timed(tally, "assemble", tracer.assemble),
+               _timed(tally, "limit distance", tracer._limit_distance),
+               _timed(tally, "topology check", tracer._check)]
+    try:
+        for (owner, name, _), patch in zip(originals, patches, strict=True):
+            setattr(owner, name, patch)
+        yield
+    finally:
+        for owner, name, original in originals:
+            setattr(owner, name, original)
+
+
+def measure(n: int) -> tuple[_Tally, float]:
+    """The tally of ``n`` traces and their total seconds (after one untimed warm-up trace)."""
+    ks = np.logspace(*np.log10(K_RANGE), n)
+    trace_boundaries(float(ks[0]))
+    tally = _Tally()
+    with _instrumented(tally):
+        start = time.perf_counter()
+        for k in ks:
+            result = trace_boundaries(float(k))
+            if not result.ok:
+                raise SystemExit(f"batching.py: k = {k!r} failed: {result.failures}")
+        total = time.perf_counter() - start
+    return tally, total
+
+
+def report(tally: _Tally, total: float, n: int) -> str:
+    """The table of parts, per ``k``."""
+    seconds, counts = tally.seconds, tally.counts
+    steps = sum(seconds[f"step {kind}"] for kind in ("plain", "scanned", "rejected"))
+    rows = [("all of trace_boundaries", total, None),
+            ("engine (trace_curve)", seconds["engine"], None),
+            ("- plain accepted steps", seconds["step plain"], counts["step plain"]),
+            ("- other accepted steps", seconds["step scanned"], counts["step scanned"]),
+            ("- rejected steps", seconds["step rejected"], counts["step rejected"]),
+            ("  (locating special points, in the steps above)", seconds["locate"],
+             counts["locate"]),
+            ("- start and end of each curve", seconds["engine"] - steps, None),
+            ("assembly of the curves", seconds["assemble"], counts["assemble"]),
+            ("limit distance check", seconds["limit distance"], None),
+            ("topology check", seconds["topology check"], None)]
+    lines = [f"{n} k log-spaced over [{K_RANGE[0]:g}, {K_RANGE[1]:g}], per k:", "",
+             "| part | ms per k | calls or steps per k |", "|---|---:|---:|"]
+    for name, value, count in rows:
+        calls = "" if count is None else f"{count / n:.1f}"
+        lines.append(f"| {name} | {value / n * 1e3:.2f} | {calls} |")
+    plain = seconds["step plain"]
+    taken = sum(counts[f"step {kind}"] for kind in ("plain", "scanned", "rejected"))
+    lines += ["", f"everything but the plain steps: {(total - plain) / n * 1e3:.1f} ms per k "
+              f"({(total - plain) / total:.0%} of the time); the plain steps are "
+              f"{counts['step plain'] / max(1, taken):.0%} of all steps"]
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("-n", type=int, default=100, help="values of k (default 100)")
+    args = parser.parse_args(argv)
+    if args.n < 1:
+        parser.error(f"-n must be at least 1, got {args.n}")
+    tally, total = measure(args.n)
+    print(report(tally, total, args.n))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
