@@ -14,7 +14,11 @@ defaults), how much of the time such batching could reach:
   located special point), and rejected steps; the special points' location inside them
   (``locate_zero``); the rest of the engine (start, end checks); the tracer's assembly of each
   curve (``assemble``), the limit curve's distance check and the topology check;
-* the steps per ``k`` of each kind.
+* the steps per ``k`` of each kind;
+* which of the serial engine's small operations (dot products, bordered solves, the
+  predictor's product, norms) one numpy call over all lanes repeats to the last bit
+  (:func:`primitives`): a batched engine that repeats the serial one's decisions exactly
+  needs them.
 
 Plain steps are the ones a batched engine can take for all lanes at once with the same tests
 as the serial one; everything else is per lane: in serial Python unless it is batched too.
@@ -28,6 +32,7 @@ from __future__ import annotations
 import argparse
 import contextlib
 import functools
+import math
 import time
 from collections import Counter
 
@@ -157,6 +162,37 @@ def report(tally: _Tally, total: float, n: int) -> str:
     return "\n".join(lines)
 
 
+def primitives(lanes: int = 2000, seed: int = 1) -> list[tuple[str, float]]:
+    """Which of the serial engine's small operations a batched engine gets to the last bit
+    from one numpy call over all lanes: the fraction of ``lanes`` random cases that agree.
+
+    The serial engine takes dot products of 4-vectors with ``@``, bordered 4 x 4 systems with
+    LAPACK's ``dgetrf`` and ``dgetrs`` (``scipy.linalg.lapack``), Hermite weights times node
+    vectors as a ``(2, 6) @ (6, 4)`` product, and norms with ``math.hypot``. An operation that
+    agrees on every case here can be batched; one that does not stays per lane.
+    """
+    from scipy.linalg.lapack import dgetrf, dgetrs  # only this check uses LAPACK directly
+
+    rng = np.random.default_rng(seed)
+    a, b = rng.standard_normal((lanes, 4)), rng.standard_normal((lanes, 4))
+    dots = np.array([u @ v for u, v in zip(a, b, strict=True)])
+    matrices, rhs = rng.standard_normal((lanes, 4, 4)), rng.standard_normal((lanes, 4))
+    solves = np.array([dgetrs(*dgetrf(m)[:2], r)[0] for m, r in zip(matrices, rhs, strict=True)])
+    weights, vectors = rng.standard_normal((lanes, 2, 6)), rng.standard_normal((lanes, 6, 4))
+    products = np.array([w @ v for w, v in zip(weights, vectors, strict=True)])
+    norms = np.array([math.hypot(*v) for v in a.tolist()])
+    return [
+        ("dot products: one stacked matmul", float(np.mean(
+            np.matmul(a[:, None, :], b[:, :, None])[:, 0, 0] == dots))),
+        ("bordered solves: one stacked numpy.linalg.solve", float(np.mean(np.all(
+            np.linalg.solve(matrices, rhs[:, :, None])[:, :, 0] == solves, axis=1)))),
+        ("Hermite weights times nodes: one stacked matmul", float(np.mean(np.all(
+            np.matmul(weights, vectors) == products, axis=(1, 2))))),
+        ("norms: sqrt of the sum of squares in order", float(np.mean(np.sqrt(
+            ((a[:, 0] ** 2 + a[:, 1] ** 2) + a[:, 2] ** 2) + a[:, 3] ** 2) == norms))),
+    ]
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -166,6 +202,9 @@ def main(argv=None) -> int:
         parser.error(f"-n must be at least 1, got {args.n}")
     tally, total = measure(args.n)
     print(report(tally, total, args.n))
+    print("\n| operation over 2000 random lanes | the serial engine's bits |\n|---|---:|")
+    for name, fraction in primitives():
+        print(f"| {name} | {fraction:.1%} |")
     return 0
 
 

@@ -143,8 +143,10 @@ def test_the_batching_table_has_every_part_and_leaves_the_engine_as_it_was(capsy
     out = capsys.readouterr().out
     for part in ("plain accepted steps", "other accepted steps", "rejected steps",
                  "locating special points", "assembly of the curves", "limit distance check",
-                 "everything but the plain steps"):
+                 "everything but the plain steps", "dot products: one stacked matmul",
+                 "norms: sqrt of the sum of squares in order"):
         assert part in out
+    assert all(0.0 <= fraction <= 1.0 for _, fraction in batching.primitives(lanes=20))
     assert [getattr(owner, name) for owner, name in batching.WRAPPED] == originals
     after = trace_boundaries(3.0)
     for name, curve in before.curves.items():
