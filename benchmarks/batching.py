@@ -3,8 +3,9 @@
     python3 benchmarks/batching.py [-n 100]
 
 Issue 14's third target (1000 ``k`` in 5 s serially) leaves 5 ms per ``k``; the serial tracer
-takes about 55. ``benchmarks/floor.py`` shows that stepping many ``k`` at once through the
-model's array form costs a few microseconds per lane and step. This script measures, over
+takes 40 to 55 on the 2-core machine of ``benchmarks/README.md``, by its load.
+``benchmarks/floor.py`` shows that stepping many ``k`` at once through the model's array form
+costs a few microseconds per lane and step. This script measures, over
 ``-n`` values of ``k`` log-spaced over ``[1e-4, 1e6]`` (``trace_boundaries`` with its
 defaults), how much of the time such batching could reach:
 
