@@ -5,7 +5,9 @@ order in one fresh temporary directory per document, and must exit with 0 (or wi
 trailing ``# exit code N`` names) and write exactly the files its arguments say it writes.
 ``pip install`` (the package is installed already), ``pytest`` (this run) and the benchmark
 harness (it needs the peers of ``.[bench]``) are not run. Fenced ``python`` blocks run in
-order in one namespace per document. ``text`` blocks are output and are not run.
+order in one namespace per document. ``text`` blocks are output: each is the output of the
+first ``groove`` command of the ``bash`` block before it, line by line (a line ending in
+``, ...`` is the start of one).
 """
 
 from __future__ import annotations
@@ -142,6 +144,35 @@ def test_python_blocks(path, tmp_path, monkeypatch, capsys):
     namespace: dict = {"__name__": "__doc_example__"}
     for i, block in enumerate(_blocks(path, "python")):
         exec(compile(block, f"{path.name}[python block {i + 1}]", "exec"), namespace)
+
+
+def _samples(path: Path) -> list[tuple[str, list[str]]]:
+    """``(command, lines)`` of every ``text`` block: the first ``groove`` command of the ``bash``
+    block before it, and the block's lines."""
+    samples, command = [], None
+    for lang, body in FENCE.findall(path.read_text()):
+        if lang == "bash":
+            command = next((line.partition(" #")[0].strip() for line in body.splitlines()
+                            if line.startswith("groove ")), None)
+        elif lang == "text" and command is not None:
+            samples.append((command, body.splitlines()))
+    return samples
+
+
+@pytest.mark.parametrize("path", DOCUMENTS, ids=lambda p: p.name)
+def test_output_samples_are_the_programs_output(path, tmp_path, monkeypatch, capsys):
+    """Each output sample of the documents is what its command prints (a line ending in
+    ``, ...`` is the start of a printed line): samples do not drift from the program."""
+    monkeypatch.chdir(tmp_path)
+    for command, lines in _samples(path):
+        capsys.readouterr()
+        assert main(shlex.split(command)[1:]) == 0, command
+        printed = capsys.readouterr().out.splitlines()
+        for line in lines:
+            if line.endswith(", ..."):
+                assert any(p.startswith(line[:-3]) for p in printed), f"{command}: {line}"
+            else:
+                assert line in printed, f"{command}: {line}"
 
 
 def test_the_guide_documents_every_command():
