@@ -474,6 +474,8 @@ def test_atomic_write_all_moves_the_files_only_when_every_one_was_written(tmp_pa
 @pytest.mark.parametrize("column, value, message", [
     ("physical", "maybe", "column physical = 'maybe' in data row 3 is not True or False"),
     ("certified", "yes", "column certified = 'yes' in data row 3 is not True, False or empty"),
+    ("point", "bogus", "column point = 'bogus' in data row 3 is not empty or one of start, end, "
+                       "junction, fold_gamma, fold_delta, branch_point"),
 ])
 def test_plot_names_the_row_and_value_of_a_bad_flag(column, value, message, written, tmp_path,
                                                     capsys):

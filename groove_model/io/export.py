@@ -10,7 +10,7 @@ import pandas as pd
 
 from ..model.boundaries import BOUNDARY_NAMES
 from ..model.parameters import check_traced_friction, check_traced_ratio, k_text
-from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet
+from ..tracing import CSV_COLUMNS, SPECIAL_POINT_COLUMNS, BoundarySet, PointKind
 from .atomic import WriteError, atomic_write, atomic_write_all, remove_stale_temporaries
 
 __all__ = [
@@ -76,8 +76,8 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     OSError
         If the file cannot be read.
     ValueError
-        If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name, a
-        value that is not a number, a point outside the domain, or a ``k`` or compliance ratio
+        If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name or
+        point kind, a value that is not a number, a point outside the domain, or a ``k`` or compliance ratio
         outside the ranges the boundaries are traced for (the message names the column, value
         and row). The rows come back in the order along each boundary (increasing ``s``),
         whatever their order in the file.
@@ -148,6 +148,12 @@ def read_boundaries_csv(path) -> pd.DataFrame:
     frame["physical"] = physical.eq("true")
     frame["certified"] = certified.map({"true": True, "false": False, "": None})
     frame["point"] = frame["point"].fillna("")
+    kinds = [kind.value for kind in PointKind]
+    bad = ~frame["point"].isin(["", *kinds])
+    if bad.any():
+        row = int(np.flatnonzero(bad.to_numpy())[0])
+        raise ValueError(f"{path}: column point = {frame['point'].iloc[row]!r} in data row "
+                         f"{row + 1} is not empty or one of {', '.join(kinds)}")
     # the boundaries in their order, each along its arclength s, whatever the file's order
     order = frame["boundary"].map({name: i for i, name in enumerate(BOUNDARY_NAMES)})
     return frame.assign(_order=order).sort_values(["_order", "s"], kind="stable") \
