@@ -73,6 +73,23 @@ def test_degree_input_is_checked_in_degrees(argv, message, capsys):
     assert message in err and "rad" not in err
 
 
+@pytest.mark.parametrize("deg, rad", [
+    (["--gamma", "30", "--delta", "30.000000000000004"], ["--gamma", "0.5235987755982988",
+                                                          "--delta", "0.5235987755982988"]),
+    (["--gamma", "90.00000000000001", "--delta", "10"], ["--gamma", "1.5707963267948966",
+                                                         "--delta", "0.17453292519943295"]),
+    (["--gamma", "-0", "--delta", "-0"], ["--gamma", "0", "--delta", "0"]),
+])
+def test_degrees_have_the_edge_slack_of_radians(deg, rad, capsys):
+    """An angle in degrees a few rounding units beyond an edge of the domain is taken as on
+    the edge, as in radians (4 eps relative); -0 is 0."""
+    assert main(["solve", "-k", "1", "--deg", "--json", *deg]) == 0
+    in_degrees = json.loads(capsys.readouterr().out)
+    assert main(["solve", "-k", "1", "--json", *rad]) == 0
+    assert in_degrees == json.loads(capsys.readouterr().out)
+    assert math.copysign(1.0, in_degrees["gamma"]) == 1.0
+
+
 def test_solve_degrees_and_dimensional(capsys):
     # --compliance 1 keeps the paper's law while --poisson sets the Hertz contact
     argv = ["solve", "--gamma", "20", "--delta", "0", "-k", "1", "--deg", "--json",

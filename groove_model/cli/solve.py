@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 from .common import (
     EXIT_OK,
@@ -77,14 +78,19 @@ def _angles(args) -> tuple[float, float]:
     # Imported here, not at the top: the model loads numpy, which `groove --help` does not need.
     from ..model.parameters import check_domain
 
-    gamma, delta = args.gamma, args.delta
+    gamma, delta = args.gamma + 0.0, args.delta + 0.0  # (-0.0 as 0.0)
     if args.deg:
-        if not 0.0 <= gamma <= 90.0:
+        # the slack of check_domain in radians (4 eps relative), in the unit given; an angle
+        # within it of an edge is taken as on the edge
+        slack = 4.0 * sys.float_info.epsilon
+        if not 0.0 <= gamma <= 90.0 * (1.0 + slack):
             raise UsageError(f"gamma = {gamma!r} deg is outside the allowed range "
-                             "0 <= gamma <= 90 deg")
-        if not 0.0 <= delta <= gamma:
+                             "0 <= gamma <= 90 deg (to 4 eps relative, then taken as 90)")
+        gamma = min(gamma, 90.0)
+        if not 0.0 <= delta <= gamma * (1.0 + slack) + 4.0 * 5e-324:
             raise UsageError(f"delta = {delta!r} deg is outside the allowed range "
                              f"0 <= delta <= gamma (gamma = {gamma!r} deg)")
+        delta = min(delta, gamma)
         # radians() is monotonic and maps 90 to the float nearest pi/2, so the check holds.
         gamma, delta = math.radians(gamma), math.radians(delta)
     try:

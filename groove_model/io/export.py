@@ -77,10 +77,10 @@ def read_boundaries_csv(path) -> pd.DataFrame:
         If the file cannot be read.
     ValueError
         If it is not a boundaries CSV: missing columns, no rows, an unknown boundary name or
-        point kind, a value that is not a number, a point outside the domain, or a ``k`` or compliance ratio
-        outside the ranges the boundaries are traced for (the message names the column, value
-        and row). The rows come back in the order along each boundary (increasing ``s``),
-        whatever their order in the file.
+        point kind, a value that is not a number, a point outside the domain, or a ``k`` or
+        compliance ratio outside the ranges the boundaries are traced for (the message names
+        the column, value and row). The rows come back in the order along each boundary
+        (increasing ``s``), whatever their order in the file.
 
     Notes
     -----
