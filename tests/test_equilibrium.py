@@ -196,6 +196,20 @@ def test_dimensional_results_refuse_the_closed_groove():
         dimensional_state(eq, 0.01, 2e11, 0.3, 0.033)
 
 
+def test_dimensional_results_name_a_vertical_force_that_underflows_or_is_tiny():
+    """On delta = gamma the only loaded contact grazes its wall as gamma -> 0: its vertical
+    force underflows below about gamma = 1e-215 (no Z), and above, a tiny force gives a Z that
+    overflows; each message names that force, not only the parameters."""
+    eq = solve_equilibrium(1e-300, 1e-300, 1.0)
+    with pytest.raises(ValueError, match=r"underflows where the one loaded contact meets its "
+                                         r"wall at a grazing angle"):
+        dimensional_state(eq, 1.0, 1.0, 0.3, 1.0)
+    eq = solve_equilibrium(1e-214, 1e-214, 1.0)
+    with pytest.raises(ValueError, match=r"overflow double precision \(Z is not finite\) .* "
+                                         r"scaled vertical force v = 2\.\d+e-321"):
+        dimensional_state(eq, 1.0, 1.0, 0.3, 1.0)
+
+
 @pytest.mark.parametrize("gamma, delta, k, nu, regime", [
     (0.6557071464778439, 0.3941992214086168, 2.6034760346472745, 0.0, "double_rolling"),
     (0.5851883877175147, 0.40062835471603003, 0.5256492027925755, 0.5, "rolling_sliding"),

@@ -83,8 +83,8 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
     ------
     ValueError
         For a parameter outside its range, or where the scaled vertical force is not above
-        its rounding (it vanishes at ``gamma = pi/2``), so no finite approach ``Z`` carries
-        the weight.
+        its rounding (it vanishes at ``gamma = pi/2`` and underflows on ``delta = gamma`` for
+        ``gamma`` below about ``1e-215``), so no finite approach ``Z`` carries the weight.
     """
     R = _positive("radius R", radius, "m")
     E = _positive("Young's modulus E", young, "Pa")
@@ -108,9 +108,11 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
         raise ValueError(
             f"no dimensional equilibrium at gamma = {gamma!r} rad, delta = {delta!r} rad: the "
             f"scaled vertical force of the Hertz contacts, {float(np.ravel(vertical)[where]):.3g},"
-            " is not above its rounding, so no finite approach Z carries the weight (at gamma "
-            "= pi/2 the groove is closed and it is 0); allowed range for dimensional results: "
-            "gamma < pi/2, with the vertical force resolved")
+            " is not above its rounding, so no finite approach Z carries the weight. It is 0 at "
+            "gamma = pi/2 (the groove closed) and underflows where the one loaded contact meets "
+            "its wall at a grazing angle (beta near 0 or pi: on delta = gamma, for gamma below "
+            "about 1e-215); allowed range for dimensional results: the points where that force "
+            "is above its rounding")
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is named below
         Z = (M * g / (C * vertical)) ** (2.0 / 3.0)
         scale = C * Z**1.5
@@ -120,9 +122,14 @@ def dimensional_state(eq: Equilibrium, radius, young, poisson, mass, g=9.81) -> 
                       d_R=Z * np.asarray(eq.d_R, float))
     if not all(np.all(np.isfinite(v)) for v in values.values()):
         name = next(key for key, v in values.items() if not np.all(np.isfinite(v)))
+        where = np.flatnonzero(~np.isfinite(np.ravel(values[name])))[0] \
+            if np.ndim(values[name]) else 0
         raise ValueError(f"the dimensional results overflow double precision ({name} is not "
-                         f"finite) for R = {R!r} m, E = {E!r} Pa, M = {M!r} kg, g = {g!r} m/s^2: "
-                         "give the parameters in a range where Z = (M g / C)^(2/3) is finite")
+                         f"finite) for R = {R!r} m, E = {E!r} Pa, M = {M!r} kg, g = {g!r} m/s^2 "
+                         f"and the scaled vertical force v = "
+                         f"{float(np.ravel(vertical)[where]):.3g} of the Hertz contacts at this "
+                         "point: give parameters and a point where Z = (M g / (C v))^(2/3), "
+                         "C = sqrt(R) 4 E / (3 (1 - nu^2)), is finite")
     if np.ndim(Z) == 0:
         values = {key: float(v) for key, v in values.items()}
     return DimensionalState(**values)
