@@ -313,3 +313,17 @@ def test_the_atlas_takes_numbers_for_k_not_parameters():
         trace_atlas((Parameters(1.0, Compliance(0.8)), 10.0))
     with pytest.raises(TypeError, match="friction coefficient k must be a real number"):
         trace_atlas_in_poisson(Parameters(1.0))
+
+
+@pytest.mark.parametrize("k_min, listed", [
+    (math.sqrt(2.0) * (1.0 - 1e-14), ["k_cross"]),   # the end comes first: not listed
+    (math.sqrt(2.0), ["k_cross"]),
+    (math.sqrt(2.0) * (1.0 - 1e-8), ["k_branch", "k_cross"]),
+])
+def test_a_threshold_at_the_range_end_is_not_listed_under_another_name(k_min, listed):
+    """Within rounding of k_min the junction's curve, followed down, reaches the range's end
+    together with k_branch, where a validity monitor of dr_no_roll vanishes too: that point is
+    dropped with the end, not listed as a threshold of the monitor's name; with a margin,
+    k_branch is listed under its name."""
+    atlas = trace_atlas((k_min, 100.0))
+    assert atlas.ok and [t.name for t in atlas.thresholds] == listed

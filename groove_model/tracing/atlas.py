@@ -394,26 +394,34 @@ def _curve(start: _Start, traces: list[Codim2Curve], p_range) -> AtlasCurve:
                       tuple(traces), family, (float(p_range[0]), float(p_range[1])))
 
 
+def _coincide(a: Codim2Point, b: Codim2Point) -> bool:
+    """Whether two codimension-2 points are one (:data:`COINCIDENT` in ``p``, :data:`SAME_POINT`
+    in the chart)."""
+    return abs(a.p - b.p) <= COINCIDENT * (1.0 + abs(b.p)) and bool(
+        np.max(np.abs(a.z[:-1] - b.z[:-1])) <= SAME_POINT)
+
+
 def _thresholds(start: _Start, trace: Codim2Curve, n_events: int) -> list[Threshold]:
-    """The codimension-2 points of one followed curve, coincident ones merged, range ends
-    dropped."""
+    """The codimension-2 points of one followed curve, coincident ones merged; the ends of
+    the range, and any point that coincides with one, dropped (a threshold at an end is
+    located there by chance, and by whichever of its functions vanishes first: it is not
+    listed, rather than listed under another function's name)."""
     axis, family = start.family.axis, start.family
-    points = [p for p in trace.points
-              if not (p.kind is Codim2Kind.EVENT and p.event is not None
-                      and p.event >= n_events)]
+    ends = [p for p in trace.points
+            if p.kind is Codim2Kind.EVENT and p.event is not None and p.event >= n_events]
+    points = [p for p in trace.points if not any(p is end for end in ends)]
     # a terminal event first: it is the threshold, a monitor vanishing with it is "also"
     points.sort(key=lambda p: (not p.terminal, p.index))
     merged: list[list[Codim2Point]] = []
     for point in points:
         for group in merged:
-            lead = group[0]
-            if abs(point.p - lead.p) <= COINCIDENT * (1.0 + abs(lead.p)) and np.max(
-                    np.abs(point.z[:-1] - lead.z[:-1])) <= SAME_POINT:
+            if _coincide(point, group[0]):
                 group.append(point)
                 break
         else:
             merged.append([point])
-    return [_threshold(start, group, axis, family) for group in merged]
+    return [_threshold(start, group, axis, family) for group in merged
+            if not any(_coincide(point, end) for point in group for end in ends)]
 
 
 def _threshold(start: _Start, group: list, axis: Axis, family: BoundaryFamily) -> Threshold:
