@@ -253,6 +253,39 @@ def test_ctrl_c_ends_with_a_line_and_exit_code_130_not_a_traceback(monkeypatch, 
     assert capsys.readouterr().err == "groove solve: interrupted\n"
 
 
+_TERMINATED_WHILE_WRITING = """
+import os, signal, sys
+import pandas as pd
+from groove_model.cli.main import main
+number = getattr(signal, sys.argv[1])
+real = pd.DataFrame.to_csv
+def terminated_while_writing(self, path=None, *args, **kwargs):
+    real(self, path, *args, **kwargs)  # the temporary file is there, whole
+    os.kill(os.getpid(), number)
+pd.DataFrame.to_csv = terminated_while_writing
+before = signal.getsignal(number)
+code = main(["trace", "-k", "1", "--out", sys.argv[2], "--no-figure"])
+assert signal.getsignal(number) is before, "the handler is not the caller's again"
+sys.exit(code)
+"""
+
+
+@pytest.mark.parametrize("signame", ["SIGTERM", "SIGHUP"])
+def test_a_terminated_command_removes_what_it_was_writing(signame, tmp_path):
+    """SIGTERM (a service manager, timeout) or SIGHUP (the terminal closed) while a file is
+    being written: its temporary is removed and the command says so, exit 128 + the signal (the
+    default action killed it outright and left `.name.partial-...` behind)."""
+    import signal
+
+    out = tmp_path / "out"
+    done = subprocess.run([sys.executable, "-c", _TERMINATED_WHILE_WRITING, signame, str(out)],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 128 + getattr(signal, signame), done.stderr
+    assert done.stderr.endswith("groove trace: CSVs written before the interrupt: k = none; no "
+                                f"overlay\ngroove trace: terminated by {signame}\n")
+    assert list(out.iterdir()) == []  # no temporary, no half of the pair
+
+
 @pytest.mark.parametrize("argv", [
     ["trace", "-k", "1", "--out", "DIR/o"],
     ["map", "-k", "1", "-o", "DIR/o/m.png", "--no-boundaries", "--resolution", "20"],

@@ -325,10 +325,14 @@ def _children(pid: int) -> list[int]:
 
 
 @pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux's /proc")
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGKILL])
-def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
+@pytest.mark.parametrize("signum, message", [
+    (signal.SIGTERM, b"a worker process was stopped by signal 15 (SIGTERM) before k = "),
+    (signal.SIGINT, b"a worker process was stopped by signal 2 (SIGINT) before k = "),
+    (signal.SIGKILL, b"a worker process ended abruptly")])
+def test_a_killed_worker_fails_the_sweep_with_a_message(signum, message, tmp_path):
     # a forked worker inherited the parent's SIGTERM handler, which only records the signal, and
-    # ran on (the sweep ended 0); a worker killed outright gave the pool's traceback
+    # ran on (the sweep ended 0); a worker killed outright gave the pool's traceback. A worker
+    # stops at its next k on a signal it can handle (it does not die while sending a result)
     out = tmp_path / "out"
     process = _long_sweep(out, start_new_session=True)
     try:
@@ -345,8 +349,43 @@ def test_a_killed_worker_fails_the_sweep_with_a_message(signum, tmp_path):
             os.killpg(process.pid, signal.SIGKILL)
         process.communicate()
     assert process.returncode == 1, stderr
-    assert b"a worker process ended abruptly" in stderr and b"Traceback" not in stderr
+    assert message in stderr and b"nothing written" in stderr and b"Traceback" not in stderr
     assert not out.exists()  # the directory it created is removed, empty
+
+
+@pytest.mark.skipif(not Path("/proc/self/task").exists(), reason="needs Linux's /proc")
+@pytest.mark.parametrize("signum, code, message", [
+    (signal.SIGINT, 130, b"groove sweep: interrupted"),
+    (signal.SIGTERM, 143, b"groove sweep: terminated by SIGTERM; nothing written")])
+@pytest.mark.parametrize("delay", [0.3, 1.1])
+def test_a_signal_to_the_whole_group_ends_the_sweep_and_its_workers(signum, code, message, delay,
+                                                                  tmp_path):
+    # Ctrl-C at a terminal, and `timeout`, signal the whole group: a worker the signal killed
+    # while it sent a result left half a message in the pool's pipe, and the sweep hung for ever
+    # (3 runs in 37 with Ctrl-C) with its temporary files
+    out = tmp_path / "out"
+    process = _long_sweep(out, start_new_session=True)
+    workers: list[int] = []
+    try:
+        deadline = time.monotonic() + 120
+        while len(workers) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)  # until the pool has started its workers
+            workers = _pool_workers(process.pid)
+        assert len(workers) == 2, f"no worker processes found: {workers}"
+        time.sleep(delay)  # into their chunks
+        os.killpg(process.pid, signum)
+        _, stderr = process.communicate(timeout=60)
+        deadline = time.monotonic() + 30
+        while any(map(_running, workers)) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not any(map(_running, workers)), "a worker ran on after its sweep ended"
+    finally:
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(process.pid, signal.SIGKILL)
+        process.communicate()
+    assert process.returncode == code, stderr
+    assert message in stderr and b"Traceback" not in stderr
+    assert not out.exists()  # no temporary file, and not the directory it created
 
 
 def _pool_workers(pid: int) -> list[int]:

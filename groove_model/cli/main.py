@@ -9,11 +9,14 @@ others are listed, with their line of help, but not loaded): start-up is part of
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import logging
 import os
+import signal
 import sys
-from collections.abc import Collection, Sequence
+import threading
+from collections.abc import Collection, Iterator, Sequence
 
 from .. import __version__
 from .common import COMMANDS, EXIT_FAILED, EXIT_INTERRUPTED, EXIT_USAGE, UsageError, add_verbose
@@ -95,7 +98,13 @@ def main(argv=None) -> int:
     logging.basicConfig(level=logging.INFO if verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
-        return args.run(args)
+        with _terminable():
+            return args.run(args)
+    except _Terminated as exc:
+        # as for Ctrl-C: files are written whole or not at all, the temporaries removed
+        print(f"groove {args.command}: terminated by {signal.Signals(exc.signum).name}",
+              file=sys.stderr)
+        return 128 + exc.signum
     except BrokenPipeError:
         # The reader went away (`groove ... | head`): stop quietly, as other tools do, and keep
         # Python from complaining about stdout when it exits.
@@ -128,6 +137,42 @@ def main(argv=None) -> int:
         print(f"groove {args.command}: error: {exc}", file=sys.stderr)
         return EXIT_FAILED
     return EXIT_FAILED  # pragma: no cover
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP while a command runs: an interrupt from outside, handled as Ctrl-C's
+    ``KeyboardInterrupt`` is (what a command does on Ctrl-C, it does here), reported apart."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+@contextlib.contextmanager
+def _terminable() -> Iterator[None]:
+    """While a command runs, SIGTERM and SIGHUP (a service manager, ``timeout``, a closed
+    terminal) raise :class:`_Terminated` in the main thread, as Ctrl-C raises
+    ``KeyboardInterrupt``: a file being written is then removed, where the default action
+    killed the process outright and left its temporary behind. A signal ignored when the
+    command starts (``nohup``'s SIGHUP) stays ignored; ``groove sweep`` sets its own handler
+    while its workers run."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum, frame):
+        raise _Terminated(signum)
+
+    previous = {}
+    for name in ("SIGTERM", "SIGHUP"):  # no SIGHUP on Windows
+        number = getattr(signal, name, None)
+        if number is not None and signal.getsignal(number) is signal.SIG_DFL:
+            previous[number] = signal.signal(number, terminate)
+    try:
+        yield
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
 
 
 def _os_message(exc: OSError) -> str:

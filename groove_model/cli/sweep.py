@@ -116,12 +116,19 @@ class _Termination:
 
     def __init__(self, progress: Progress) -> None:
         self.progress = progress
-        self.signum = None
+        self.signum: int | None = None
 
     def __call__(self, result) -> None:
         self.progress(result)
         if self.signum is not None:
-            raise SystemExit(128 + self.signum)
+            self.exit()
+
+    def exit(self) -> None:
+        """Say so and end with ``128 + signal``, as a shell reports a process a signal ended."""
+        signum = int(self.signum or signal.SIGTERM)
+        print(f"groove sweep: terminated by {signal.Signals(signum).name}; nothing written",
+              file=sys.stderr)
+        raise SystemExit(128 + signum)
 
     @contextlib.contextmanager
     def installed(self):
@@ -141,7 +148,7 @@ class _Termination:
             for signum, handler in previous.items():
                 signal.signal(signum, handler)
         if self.signum is not None:
-            raise SystemExit(128 + self.signum)
+            self.exit()
 
 
 def outputs(args) -> list:
@@ -159,7 +166,7 @@ def run(args) -> int:
 
     from ..io.sweep import write_sweep  # pandas (see above)
     from ..model.parameters import k_text  # numpy (see above)
-    from ..tracing import sweep_results  # the engine (see above)
+    from ..tracing import WorkerStopped, sweep_results  # the engine (see above)
 
     if not args.k_min <= args.k_max:
         raise UsageError(f"--k-min = {k_text(args.k_min)} must be <= --k-max = "
@@ -184,15 +191,20 @@ def run(args) -> int:
         require_certify_extra()
     results = sweep_results(ks, jobs=args.jobs, keep_unphysical=args.keep_unphysical,
                             compliance=compliance, certify=args.certify)
+    termination = _Termination(Progress(len(ks)))
     try:
-        with _Termination(Progress(len(ks))).installed() as progress:
+        with termination.installed() as progress:
             paths, failed = write_sweep(results, out, suffix=compliance_label(compliance),
                                         progress=progress)
-    except BrokenProcessPool:
+    except (BrokenProcessPool, WorkerStopped) as exc:
+        if termination.signum is not None:  # the signal reached this process too
+            termination.exit()
         # a worker was killed (out of memory, a signal to it alone, or a Ctrl-C that reached the
-        # workers while the parent was starting them, where Python can drop the parent's)
-        print("groove sweep: error: a worker process ended abruptly (killed, interrupted or out "
-              "of memory); nothing written", file=sys.stderr)
+        # workers while the parent was starting them, where Python can drop the parent's), or
+        # stopped by a signal to it alone
+        what = str(exc) if isinstance(exc, WorkerStopped) else (
+            "a worker process ended abruptly (killed, interrupted or out of memory)")
+        print(f"groove sweep: error: {what}; nothing written", file=sys.stderr)
         return EXIT_FAILED
     for result in failed:
         for failure in result.failures:

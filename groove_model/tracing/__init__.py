@@ -18,7 +18,7 @@ from .curves import (
     Where,
     boundary_quantities,
 )
-from .sweep import SweepError, SweepResult, sweep_results, trace_many
+from .sweep import SweepError, SweepResult, WorkerStopped, sweep_results, trace_many
 from .tracer import DEFAULT_OPTIONS, trace_boundaries
 
 __all__ = [
@@ -33,6 +33,7 @@ __all__ = [
     "SweepResult",
     "TraceError",
     "Where",
+    "WorkerStopped",
     "boundary_quantities",
     "sweep_results",
     "trace_boundaries",

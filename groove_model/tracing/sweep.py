@@ -39,7 +39,7 @@ from .tracer import trace_boundaries
 if TYPE_CHECKING:  # pandas is imported where a table is made: `groove atlas` needs none
     import pandas as pd
 
-__all__ = ["SweepError", "SweepResult", "sweep_results", "trace_many"]
+__all__ = ["SweepError", "SweepResult", "WorkerStopped", "sweep_results", "trace_many"]
 
 #: most ``k`` per task sent to a worker: large enough to amortise the round trip, small enough
 #: to balance the load and keep the window of results in flight small
@@ -87,11 +87,26 @@ class SweepError(TraceError):
         self.results = results
 
 
+class WorkerStopped(RuntimeError):
+    """A worker process of ``jobs`` was stopped by a signal (Ctrl-C, SIGTERM, SIGHUP) before it
+    had traced its whole chunk: the sweep has no result for the rest of the chunk."""
+
+
+#: the signals a worker process of ``jobs`` has received (:func:`_worker_signals`)
+_STOP_SIGNALS: list[int] = []
+
+
 def _trace_chunk(ks: list[float], keep_unphysical: bool, options: Options | None,
                  compliance: Compliance, certify: bool = False) -> list:
-    """Trace a chunk of checked ``k`` values (in a worker, or in this process); picklable."""
+    """Trace a chunk of checked ``k`` values (in a worker, or in this process); picklable.
+
+    A worker that has received a stopping signal raises :class:`WorkerStopped` before its next
+    ``k``: its chunk is then not a result, however short."""
     results = []
     for k in ks:
+        if _STOP_SIGNALS:
+            raise WorkerStopped(f"a worker process was stopped by signal {_STOP_SIGNALS[0]} "
+                                f"({signal.Signals(_STOP_SIGNALS[0]).name}) before k = {k!r}")
         traced = trace_boundaries(Parameters(k, compliance), keep_unphysical=keep_unphysical,
                                   options=options, certify=certify)
         # with certify, a boundary not proven fails its k (as groove trace --certify exits 1)
@@ -133,23 +148,31 @@ def _workers(jobs, executor) -> int:
 
 
 def _worker_signals() -> None:
-    """In each worker of ``--jobs``: Ctrl-C, SIGTERM and SIGHUP end the worker at once, quietly,
-    and so does the end of its parent process, however it ended.
+    """In each worker of ``--jobs``: Ctrl-C, SIGTERM and SIGHUP stop the worker before its next
+    ``k`` (:class:`WorkerStopped`), and the end of its parent process, however it ended, ends it.
 
-    Ctrl-C at a terminal reaches the whole process group. Left to Python's default, a worker
-    waiting for its next chunk printed a ``KeyboardInterrupt`` traceback beside the parent's
-    one-line message; a forked worker also inherited the parent's SIGTERM handler, which only
-    records the signal, so a terminated worker ran on. The parent, which handles the signal,
-    stops the sweep and writes nothing. A Ctrl-C the parent ignores (a background job) stays
+    Ctrl-C at a terminal, and ``timeout`` or a service manager's SIGTERM, reach the whole
+    process group. A worker the signal killed outright (the default action) could die while
+    sending its result: the half message left in the pool's pipe, which the parent holds open
+    too, blocked the pool's thread in the parent for ever, and the sweep hung. Here the
+    handler only records the signal, a result being sent is sent whole, and the worker stops
+    between two ``k``: the parent, which handles the signal itself, stops the sweep and writes
+    nothing, within one ``k`` of each worker; a signal to a worker alone fails the sweep with
+    a message. (Left to Python's own handler, a worker also printed a ``KeyboardInterrupt``
+    traceback; a forked worker inherited the parent's SIGTERM handler, which only records the
+    signal in the parent, and ran on.) A Ctrl-C the parent ignores (a background job) stays
     ignored in the workers too. A parent killed outright (SIGKILL, the out-of-memory killer)
     handles nothing: its workers, which hold both ends of the pool's pipes themselves, waited
     for their next chunk for ever; :func:`_watch_parent` ends them.
     """
+    def stop(signum, frame) -> None:
+        _STOP_SIGNALS.append(signum)
+
     if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
-        signal.signal(signal.SIGINT, signal.SIG_DFL)
+        signal.signal(signal.SIGINT, stop)
     for name in ("SIGTERM", "SIGHUP"):  # no SIGHUP on Windows
         if hasattr(signal, name):
-            signal.signal(getattr(signal, name), signal.SIG_DFL)
+            signal.signal(getattr(signal, name), stop)
     threading.Thread(target=_watch_parent, daemon=True, name="groove-watch-parent").start()
 
 
@@ -220,7 +243,9 @@ def sweep_results(ks: Iterable[float], *, jobs: int | None = None,
     Yields
     ------
     SweepResult
-        Failures are yielded like any result (``ok = False``), never skipped.
+        Failures are yielded like any result (``ok = False``), never skipped. A worker of
+        ``jobs`` stopped by a signal (Ctrl-C, SIGTERM, SIGHUP) raises :class:`WorkerStopped`
+        where its results would come.
 
     Raises
     ------
@@ -308,6 +333,8 @@ def trace_many(ks: Iterable[float], jobs: int | None = None, *,
     ------
     SweepError
         If a ``k`` failed; it carries every result (``.results``), the failed ones included.
+    WorkerStopped
+        If a worker of ``jobs`` was stopped by a signal (Ctrl-C, SIGTERM, SIGHUP).
     ValueError, TypeError
         As for :func:`sweep_results`, before anything is traced.
 
