@@ -24,6 +24,8 @@ from groove_model.model.parameters import (
         (float("nan"), ValueError, "friction coefficient k = nan is outside the allowed range"),
         (float("inf"), ValueError, "friction coefficient k = inf is outside the allowed range"),
         (-1e7, ValueError, "friction coefficient k = -1e+07 is outside the allowed range"),
+        # an integer beyond the floats is out of range, not an OverflowError
+        (10**400, ValueError, "friction coefficient k = inf is outside the allowed range"),
         ("1", TypeError, "friction coefficient k must be a real number, got '1' of type str"),
         (None, TypeError, "friction coefficient k must be a real number, got None"),
     ],

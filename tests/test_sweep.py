@@ -95,10 +95,23 @@ def test_results_come_in_the_order_given_with_a_small_window():
     assert [r.k for r in results] == ks
 
 
-@pytest.mark.parametrize("bad", [[0.0], [-1.0], [float("nan")], [float("inf")], [1e-5], [2e6]])
+@pytest.mark.parametrize("bad", [[0.0], [-1.0], [float("nan")], [float("inf")], [1e-5], [2e6],
+                                 [10**400], [-10**400]])
 def test_bad_k_is_rejected(bad):
-    with pytest.raises(ValueError, match="friction coefficient k"):
+    with pytest.raises(ValueError, match=r"friction coefficient k = .* is outside the range the "
+                                         r"boundaries are traced for: 1e-4 <= k <= 1e6"):
         trace_many(bad)
+
+
+@pytest.mark.parametrize("ratio", [-1.0, 0.0, float("inf"), float("nan"), 0.5, 2.0])
+def test_a_compliance_ratio_out_of_range_names_the_traced_range(ratio):
+    """A ratio <= 0 or not finite gets the traced range's message too, not only "finite and
+    > 0" (the range the sweep would have refused next)."""
+    for call in (lambda: trace_many([1.0], compliance=ratio),
+                 lambda: trace_boundaries(1.0, compliance=ratio)):
+        with pytest.raises(ValueError, match=r"compliance ratio c = .* is outside the range the "
+                                             r"boundaries are traced for: 2/3 <= c <= 1"):
+            call()
 
 
 @pytest.mark.parametrize("bad", ["12", b"12", 1.0, ["x"], [True], [1.0, None]])

@@ -46,7 +46,10 @@ def _check_real(name: str, value: object) -> float:
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"{name} must be a real number, got {value!r} of type "
                         f"{type(value).__name__}")
-    return float(value)
+    try:
+        return float(value)
+    except OverflowError:  # an integer (or fraction) beyond the floats: infinite as a float,
+        return math.inf if value > 0 else -math.inf  # so that every range check names its range
 
 
 def check_flag(name: str, value: object) -> bool:
@@ -183,7 +186,8 @@ def traced_compliance(compliance: Compliance | float | None) -> Compliance:
     if compliance is None:
         return Compliance()
     if not isinstance(compliance, Compliance):
-        compliance = Compliance(_check_real("compliance ratio c", compliance))
+        # the traced range first: it is the one to name, for a ratio <= 0 or not finite too
+        compliance = Compliance(check_traced_ratio(_check_real("compliance ratio c", compliance)))
     check_traced_ratio(compliance.ratio)
     return compliance
 
