@@ -49,7 +49,8 @@ def _check_real(name: str, value: object) -> float:
     try:
         return float(value)
     except OverflowError:  # an integer (or fraction) beyond the floats: infinite as a float,
-        return math.inf if value > 0 else -math.inf  # so that every range check names its range
+        positive = value > 0  # type: ignore[operator]  # (every Real here compares with 0)
+        return math.inf if positive else -math.inf  # so that every range check names its range
 
 
 def check_flag(name: str, value: object) -> bool:
