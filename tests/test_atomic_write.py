@@ -457,3 +457,41 @@ def test_a_stale_backup_of_a_link_is_removed_and_only_the_link(tmp_path):
     stale.symlink_to(tmp_path / "elsewhere.csv")
     assert remove_stale_temporaries(tmp_path) == [stale]
     assert (tmp_path / "elsewhere.csv").read_text() == "the user's file"
+
+
+def test_a_group_that_writes_nothing_leaves_no_directory_it_created(tmp_path):
+    """The targets' missing directories are created, and removed again when the group fails
+    (a full disk): a command that writes nothing leaves nothing, not an empty --out."""
+    import errno
+
+    from groove_model.io.atomic import WriteError, atomic_write_all
+
+    def full(tmp):
+        Path(tmp).write_text("half")
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    (tmp_path / "kept").mkdir()
+    files = [(tmp_path / "new" / "deeper" / "a.csv", lambda tmp: Path(tmp).write_text("a")),
+             (tmp_path / "kept" / "b.csv", full)]
+    with pytest.raises(WriteError, match=r"cannot write .*b\.csv: No space left on device"):
+        atomic_write_all(files)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["kept"]  # new/deeper removed
+    assert list((tmp_path / "kept").iterdir()) == []  # an existing directory stays
+    files[1] = (tmp_path / "kept" / "b.csv", lambda tmp: Path(tmp).write_text("b"))
+    assert atomic_write_all(files) == [path for path, _ in files]
+    assert (tmp_path / "new" / "deeper" / "a.csv").read_text() == "a"
+
+
+def test_the_atlas_command_on_a_full_disk_leaves_no_directory(tmp_path, monkeypatch, capsys):
+    import errno
+
+    from groove_model.cli.main import main
+
+    def full(self, *args, **kwargs):  # the report, the last file of the group
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(Path, "write_text", full)
+    out = tmp_path / "new" / "atlas"
+    assert main(["atlas", "--k-min", "1", "--k-max", "10", "--out", str(out), "--no-figure"]) == 1
+    assert "No space left on device" in capsys.readouterr().err
+    assert list(tmp_path.iterdir()) == []

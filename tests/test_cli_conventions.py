@@ -283,7 +283,7 @@ def test_a_terminated_command_removes_what_it_was_writing(signame, tmp_path):
     assert done.returncode == 128 + getattr(signal, signame), done.stderr
     assert done.stderr.endswith("groove trace: CSVs written before the interrupt: k = none; no "
                                 f"overlay\ngroove trace: terminated by {signame}\n")
-    assert list(out.iterdir()) == []  # no temporary, no half of the pair
+    assert not out.exists()  # no temporary, no half of the pair, not the directory it made
 
 
 @pytest.mark.parametrize("argv", [
@@ -446,16 +446,30 @@ def test_a_directory_where_no_file_can_be_created_is_refused_before_computing(
     assert "creating a file in /proc failed: " in err or "/proc is not writable" in err
 
 
-def test_an_error_of_the_system_reads_path_then_reason(tmp_path, monkeypatch, capsys):
+def test_an_error_of_the_system_reads_path_then_reason(monkeypatch, capsys):
+    from groove_model.cli import solve
+
+    def failed(args):
+        raise FileNotFoundError(2, "No such file or directory", "/no/such/place")
+
+    monkeypatch.setattr(solve, "run", failed)
+    with pytest.raises(SystemExit) as exit_info:
+        main(["solve", "--gamma", "0.5", "--delta", "0.1", "-k", "1"])
+    assert exit_info.value.code == 2
+    assert capsys.readouterr().err == \
+        "groove solve: error: /no/such/place: No such file or directory\n"
+
+
+def test_an_out_directory_that_cannot_be_made_after_all_is_a_failed_write(tmp_path, monkeypatch,
+                                                                         capsys):
     def refused(self, *args, **kwargs):
         raise PermissionError(13, "Permission denied", str(self))
 
     monkeypatch.setattr(Path, "mkdir", refused)  # a directory that could not be made after all
-    with pytest.raises(SystemExit) as exit_info:
-        main(["trace", "-k", "1", "--out", str(tmp_path / "new"), "--no-figure"])
-    assert exit_info.value.code == 2
-    assert capsys.readouterr().err == \
-        f"groove trace: error: {tmp_path / 'new'}: Permission denied\n"
+    assert main(["trace", "-k", "1", "--out", str(tmp_path / "new"), "--no-figure"]) == 1
+    assert capsys.readouterr().err.startswith(
+        f"groove trace: error: k = 1: cannot create {tmp_path / 'new'}: Permission denied; "
+        "nothing written for this k\n")
 
 
 def test_ctrl_c_while_the_commands_load_is_a_line_not_a_traceback(monkeypatch, capsys):

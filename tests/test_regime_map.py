@@ -454,11 +454,12 @@ def test_save_is_atomic(tmp_path, monkeypatch, traced):
     assert os.listdir(tmp_path) == ["map_k1.png"]  # no temporary file left behind
 
 
-def test_save_rejects_bad_format_and_missing_directory(tmp_path):
+def test_save_rejects_bad_format_and_makes_a_missing_directory(tmp_path):
     with pytest.raises(ValueError, match="format = 'gif' is not one of png, svg, pdf"):
         save_regime_map(1.0, tmp_path / "m.gif", formats=("gif",), boundaries=False)
-    with pytest.raises(FileNotFoundError, match="does not exist"):
-        save_regime_map(1.0, tmp_path / "missing" / "m.png", boundaries=False)
+    assert list(tmp_path.iterdir()) == []
+    target = tmp_path / "missing" / "m.png"
+    assert save_regime_map(1.0, target, n=12, boundaries=False)[0] == target
 
 
 def test_a_map_draws_a_failed_trace_in_part_and_warns(caplog):

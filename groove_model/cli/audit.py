@@ -83,7 +83,6 @@ def run(args) -> int:
     if out is not None:
         # written (both or neither) before the report is printed: a failed write is reported
         # alone
-        out.mkdir(parents=True, exist_ok=True)
         markdown, json_text = report.to_markdown(), report.to_json()
         paths = atomic_write_all([
             (out / "claims.md", lambda tmp: Path(tmp).write_text(markdown, encoding="utf-8")),

@@ -44,7 +44,6 @@ __all__ = [
     "computation_errors",
     "figure_target",
     "friction",
-    "make_directory",
     "one_friction",
     "output_directory",
     "poisson",
@@ -360,7 +359,7 @@ def _existing_ancestor(path: Path) -> Path | None:
 def figure_target(text: str) -> tuple[Path, str]:
     """A figure file to write and its format, read from its suffix.
 
-    Its directory is created when the figure is written (:func:`make_directory`), as
+    Its directory is created when the figure is written (and removed if none is), as
     ``--out`` creates its directory.
 
     Raises
@@ -385,11 +384,6 @@ def figure_target(text: str) -> tuple[Path, str]:
     if existing is not None:
         _refuse_unwritable(f"-o {target}", existing)
     return target, fmt
-
-
-def make_directory(target: Path) -> None:
-    """Create the directory of ``target`` (and its parents) if it does not exist."""
-    target.parent.mkdir(parents=True, exist_ok=True)
 
 
 def poisson(text: str) -> float:

@@ -89,7 +89,6 @@ def run(args) -> int:
                 print(f"groove compliance: error: {failure}", file=sys.stderr)
         print("groove compliance: nothing written: a curve failed", file=sys.stderr)
         return EXIT_FAILED
-    out.mkdir(parents=True, exist_ok=True)
     files = []
     for nu, atlas in study.in_k.items():
         files += atlas_files(atlas, out, f"atlas_nu{k_text(nu)}")

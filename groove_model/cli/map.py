@@ -16,7 +16,6 @@ from .common import (
     compliance_from,
     computation_errors,
     figure_target,
-    make_directory,
     one_friction,
     refuse_blocked,
     require_plotting,
@@ -114,7 +113,6 @@ def run(args) -> int:
                 print("groove map: nothing written: a boundary failed (see above)",
                       file=sys.stderr)
                 return EXIT_FAILED
-        make_directory(target)
         paths = save_regime_map(params, target, n=args.resolution, degrees=args.deg,
                                 formats=formats, boundary_set=boundary_set,
                                 boundaries=not args.no_boundaries)

@@ -9,7 +9,6 @@ from .common import (
     UsageError,
     add_command,
     figure_target,
-    make_directory,
     require_plotting,
 )
 
@@ -70,7 +69,6 @@ def run(args) -> int:
             print(f"groove plot: warning: {name}: {problem}: not the whole trace groove trace "
                   "writes (cut short or edited?); drawn as it is", file=sys.stderr)
     target, fmt = figure_target(args.output)
-    make_directory(target)
     for path in save_overlay(frames, target, degrees=args.deg, formats=(fmt,)):
         print(f"figure: {path}")
     return EXIT_OK

@@ -60,8 +60,6 @@ def write_atlas(atlas: Atlas, directory, stem: str = "atlas", extra=()) -> list[
     figure). All are written before any is moved into place, so a failed write (a full disk)
     leaves the files of an earlier run as they were.
     """
-    directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
     return atomic_write_all([*atlas_files(atlas, directory, stem), *extra])
 
 

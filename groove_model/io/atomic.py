@@ -25,7 +25,8 @@ from pathlib import Path
 from typing import Any
 
 __all__ = ["WriteError", "atomic_write", "atomic_write_all", "check_targets", "commit_all",
-           "create_temporary", "remove_stale_temporaries"]
+           "create_temporary", "make_directories", "remove_empty_directories",
+           "remove_stale_temporaries"]
 
 logger = logging.getLogger(__name__)
 
@@ -201,12 +202,43 @@ def check_targets(paths) -> None:
             raise WriteError(errno.EISDIR, f"cannot write {path}: a directory is in its place")
 
 
+def make_directories(directories) -> list[Path]:
+    """Create each of ``directories`` and its missing parents; return the ones created, each
+    directory's deepest first (for :func:`remove_empty_directories`).
+
+    Raises
+    ------
+    WriteError
+        Naming the directory that cannot be created; those created before it are removed.
+    """
+    created: list[Path] = []
+    for directory in dict.fromkeys(map(Path, directories)):
+        missing = [d for d in (directory, *directory.parents) if not d.exists()]
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            remove_empty_directories([d for d in missing if d.exists()] + created)
+            raise WriteError(exc.errno, f"cannot create {directory}: {exc.strerror or exc}") \
+                from exc
+        created = missing + created
+    return created
+
+
+def remove_empty_directories(created: Sequence[Path]) -> None:
+    """Remove the directories a writer created (deepest first) while they are empty: a write
+    that leaves no file leaves no directory either."""
+    for directory in created:
+        with contextlib.suppress(OSError):  # not empty (another file, or gone): kept
+            directory.rmdir()
+
+
 def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> list[Path]:
     """:func:`atomic_write` for files that belong together, e.g. the two CSVs of one ``k``.
 
     Every file is written to its temporary first; only when all were written are they moved
     into place, so a full disk or a failed writer leaves none of them changed (the moves
     themselves need no space, and their targets are checked first: :func:`check_targets`).
+    The targets' directories are created if missing, and removed again if nothing is written.
     Returns the paths, in order.
 
     Raises
@@ -215,6 +247,7 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
         Naming the file that could not be written; no temporary is left.
     """
     check_targets(target for target, _ in files)
+    created = make_directories(Path(target).parent for target, _ in files)
     temporaries: list[tuple[Path, Path]] = []
     current = None
     try:
@@ -228,6 +261,7 @@ def atomic_write_all(files: Sequence[tuple[Any, Callable[[Path], object]]]) -> l
     except BaseException as exc:
         for tmp, _ in temporaries:
             tmp.unlink(missing_ok=True)
+        remove_empty_directories(created)
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
             raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc
         raise

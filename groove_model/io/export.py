@@ -44,11 +44,11 @@ def write_boundary_set(boundary_set: BoundarySet, directory,
     TraceError
         If a boundary failed (nothing is written: a failed trace is not a result).
     """
-    # the tables first: they raise for a failed trace, before the directory is made
+    # the tables first: they raise for a failed trace, before the directory is made (by
+    # atomic_write_all, which removes it again if it writes nothing)
     points = boundary_set.to_frame()
     specials = boundary_set.special_points_frame()[list(SPECIAL_POINT_COLUMNS)]
     directory = Path(directory)
-    directory.mkdir(parents=True, exist_ok=True)
     points_name, specials_name = boundary_file_names(boundary_set.k, suffix)
     for name in (points_name, specials_name):
         # checked for both before either is written: a pair is written whole or not at all

@@ -16,6 +16,8 @@ from .atomic import (
     check_targets,
     commit_all,
     create_temporary,
+    make_directories,
+    remove_empty_directories,
     remove_stale_temporaries,
 )
 
@@ -77,8 +79,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
     bytes depend only on the traced values, not on how the sweep was run.
     """
     directory = Path(directory)
-    created = [d for d in (directory, *directory.parents) if not d.exists()]  # deepest first
-    directory.mkdir(parents=True, exist_ok=True)
+    created = make_directories([directory])
     remove_stale_temporaries(directory)
     targets = sweep_files(directory, prefix, suffix)
     check_targets(targets)
@@ -105,7 +106,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
         if failed or first:
             for _, name in opened:
                 name.unlink(missing_ok=True)
-            _remove_empty(created)
+            remove_empty_directories(created)
             return (), failed
         commit_all([(name, path) for (_, name), path in zip(opened, targets, strict=True)])
         return tuple(targets), failed
@@ -114,17 +115,7 @@ def write_sweep(results: Iterable[SweepResult], directory, prefix: str = "sweep"
             with contextlib.suppress(OSError):
                 handle.close()  # (flushing a full disk's buffer fails again)
             name.unlink(missing_ok=True)
-        _remove_empty(created)
+        remove_empty_directories(created)
         if isinstance(exc, OSError) and not isinstance(exc, WriteError):
             raise WriteError(exc.errno, f"cannot write {current}: {exc.strerror or exc}") from exc
         raise
-
-
-def _remove_empty(created: list[Path]) -> None:
-    """Remove the directories a sweep created (deepest first) while they are empty: a sweep
-    that writes nothing leaves nothing."""
-    for directory in created:
-        try:
-            directory.rmdir()
-        except OSError:
-            return  # not empty (or gone): its parents are not empty either

@@ -347,7 +347,8 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     k : float or Parameters
     path : path-like
         Target file; its suffix is replaced by each format's (``map_k10.png`` ->
-        ``map_k10.png`` and ``map_k10.svg``). The directory must exist.
+        ``map_k10.png`` and ``map_k10.svg``). Its directory is created if missing (and
+        removed again if nothing is written).
     n : int
         Cells along each axis (see :func:`draw_regime_map`).
     degrees : bool
@@ -370,8 +371,6 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     ------
     ValueError
         For an unknown format or an argument outside its range.
-    FileNotFoundError
-        If the target directory does not exist.
 
     Notes
     -----
@@ -385,8 +384,6 @@ def save_regime_map(k, path, n: int = 600, degrees: bool = False, formats=("png"
     if bad or not formats:
         raise ValueError(f"format = {bad[0] if bad else formats!r} is not one of png, svg, pdf")
     path = Path(path)
-    if not path.parent.is_dir():
-        raise FileNotFoundError(f"directory {path.parent} of {path} does not exist")
     fig = Figure(figsize=(7.2, 6.6), layout="constrained")
     ax = fig.subplots()
     _draw(ax, params, n, boundaries, degrees, boundary_set, legend=True)
