@@ -15,8 +15,8 @@ Every state is written in one unknown, the load-share root
     n_L / n_R = w^3,
 
 with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Double rolling
-reduces to one equation :math:`P(w) = 0` (a quartic, :func:`double_rolling_state`) that is
-strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
+reduces to one equation :math:`P(w) = 0` (a rational function, a quartic over ``1 + w``:
+:func:`double_rolling_state`) that is strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
 :func:`~groove_model.model.roots.chandrupatla`), never by Newton from a guess. Rolling
 sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force
 ratio, ``upsilon`` and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``,
