@@ -378,20 +378,12 @@ def test_a_signal_to_the_whole_group_ends_the_sweep_and_its_workers(signum, code
     # (3 runs in 37 with Ctrl-C) with its temporary files
     out = tmp_path / "out"
     process = _long_sweep(out, start_new_session=True)
-    workers: list[int] = []
     try:
-        deadline = time.monotonic() + 120
-        while len(workers) < 2 and time.monotonic() < deadline:
-            time.sleep(0.05)  # until the pool has started its workers
-            workers = _pool_workers(process.pid)
-        assert len(workers) == 2, f"no worker processes found: {workers}"
+        workers = _started_workers(process)
         time.sleep(delay)  # into their chunks
         os.killpg(process.pid, signum)
         _, stderr = process.communicate(timeout=60)
-        deadline = time.monotonic() + 30
-        while any(map(_running, workers)) and time.monotonic() < deadline:
-            time.sleep(0.05)
-        assert not any(map(_running, workers)), "a worker ran on after its sweep ended"
+        _assert_ended(workers)
     finally:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(process.pid, signal.SIGKILL)
@@ -417,6 +409,25 @@ def _pool_workers(pid: int) -> list[int]:
     return workers
 
 
+def _started_workers(process: subprocess.Popen) -> list[int]:
+    """The two pool workers of the sweep ``process``, once it has started them."""
+    workers: list[int] = []
+    deadline = time.monotonic() + 120
+    while len(workers) < 2 and time.monotonic() < deadline:
+        time.sleep(0.05)
+        workers = _pool_workers(process.pid)
+    assert len(workers) == 2, f"no worker processes found: {workers}"
+    return workers
+
+
+def _assert_ended(workers: list[int]) -> None:
+    """Within 30 s, no worker of the sweep runs on after it ended."""
+    deadline = time.monotonic() + 30
+    while any(map(_running, workers)) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(map(_running, workers)), "a worker ran on after its sweep ended"
+
+
 def _running(pid: int) -> bool:
     """Whether ``pid`` still runs (a zombie nobody reaped has ended)."""
     try:
@@ -433,20 +444,12 @@ def test_the_workers_end_when_the_sweep_is_killed_outright(start, tmp_path):
     if start not in multiprocessing.get_all_start_methods():
         pytest.skip(f"no {start!r} start method here")
     process = _long_sweep(tmp_path / "out", start, start_new_session=True)
-    workers: list[int] = []
     try:
-        deadline = time.monotonic() + 120
-        while len(workers) < 2 and time.monotonic() < deadline:
-            time.sleep(0.05)  # until the pool has started its workers
-            workers = _pool_workers(process.pid)
-        assert len(workers) == 2, f"no worker processes found: {workers}"
+        workers = _started_workers(process)
         time.sleep(0.5)  # into their first chunks
         process.kill()
         process.communicate(timeout=60)
-        deadline = time.monotonic() + 30
-        while any(map(_running, workers)) and time.monotonic() < deadline:
-            time.sleep(0.05)
-        assert not any(map(_running, workers)), "a worker ran on after its sweep was killed"
+        _assert_ended(workers)
     finally:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(process.pid, signal.SIGKILL)
