@@ -35,6 +35,10 @@ BRANCH_TANGENT_NOISE = 1e-7
 #: (:func:`drop_unresolved_folds`); the rounding noise of a constant coordinate is 1e-8 or less
 TANGENT_FLAT = 1e-6
 
+#: a coordinate flat (within its noise) from a fold to an end of the curve over more than this
+#: many points has stopped moving there: the fold is dropped (:func:`drop_unresolved_folds`)
+SATURATED = 3
+
 
 class Found(NamedTuple):
     located: Located
@@ -298,8 +302,12 @@ def drop_unresolved_folds(run: Run) -> None:
     ``100 tol (1 + max|x|)``, with ``|t_i| <= TANGENT_FLAT`` at every point from the one before
     the pair to the one after it (a real pair next to a cusp is as close in ``x_i``, but ``x_i``
     moves between its folds at a rate far above rounding). Then a fold left within that noise
-    of both ends of a curve that is flat in ``x_i`` throughout goes too. A fold next to one end
-    only (entering the curve there) is kept: elsewhere ``x_i`` moves on.
+    of both ends of a curve that is flat in ``x_i`` throughout goes too, and so does one where
+    ``x_i`` stops (or starts) moving for good: flat, and within that noise of the fold, from it
+    to an end of the curve over at least :data:`SATURATED` points, as where ``tanh`` rounds to
+    1 or ``exp(-x)`` underflows (``t_i`` becomes exactly 0 there and stays 0: a zero of ``t_i``,
+    but no turn of ``x_i``). A genuine fold next to an end of the curve is kept: ``x_i`` moves
+    back after it, and ``t_i`` grows with the distance from it.
     """
     if not run.x:
         return
@@ -339,6 +347,17 @@ def _unresolved(run: Run, folds: list[SpecialPoint], i: int,
         ends = max(abs(values[k] - float(run.x[0][i])), abs(values[k] - float(run.x[-1][i])))
         if ends <= noises[k] and float(np.max(tangents)) <= TANGENT_FLAT:
             live = []
+    coordinate = np.array([float(x[i]) for x in run.x])
+
+    def saturated(k: int) -> bool:
+        index = folds[k].index
+        for stretch in (slice(index, None), slice(0, index + 1)):
+            if len(tangents[stretch]) > SATURATED and np.max(tangents[stretch]) <= TANGENT_FLAT \
+                    and np.max(np.abs(coordinate[stretch] - values[k])) <= noises[k]:
+                return True
+        return False
+
+    live = [k for k in live if not saturated(k)]
     return [folds[k] for k in range(len(folds)) if k not in live]
 
 

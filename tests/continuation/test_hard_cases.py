@@ -390,3 +390,30 @@ def test_a_helix_is_not_closed_whatever_the_scale_of_its_residual(factor):
                   options=Options(ds=0.01, ds_max=0.01, max_arclength=3.0 * math.pi,
                                   max_steps=10000))
     assert curve.status is Status.MAX_ARCLENGTH, curve.message
+
+
+@pytest.mark.parametrize("y, dy, start, end", [
+    (np.tanh, lambda x: 1.0 - np.tanh(x) ** 2, -40.0, 40.0),            # rounds to +-1 for |x| > 19
+    (lambda x: np.exp(-x), lambda x: -np.exp(-x), 0.0, 800.0),          # underflows at x = 745
+    (lambda x: np.tanh(x / 0.01), lambda x: (1.0 - np.tanh(x / 0.01) ** 2) / 0.01, -1.0, 1.0),
+])
+def test_a_coordinate_that_stops_moving_in_floats_has_no_fold(y, dy, start, end):
+    """y = tanh x is increasing, but in floats it reaches 1.0 and stays there: t_y becomes
+    exactly 0 and stays 0. Where it first did, a fold in y was reported (accuracy 0.0), with
+    the status a success; a coordinate that stops (or starts) moving for good turns nothing."""
+    problem = Problem(lambda x: np.array([x[1] - y(x[0])]), lambda x: np.array([[-dy(x[0]), 1.0]]))
+    curve = trace(problem, [start, float(y(start))], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(1,)), events=box_events(upper={0: end}))
+    assert curve.status is Status.TERMINAL_EVENT
+    assert not curve.special("fold")
+
+
+def test_a_fold_just_before_the_end_is_kept():
+    """The saturation rule keeps a genuine fold next to an end: the circle's top, a step or two
+    before the curve ends just past it (t_y grows again after the fold)."""
+    circle = Problem(lambda x: np.array([x[0] ** 2 + x[1] ** 2 - 1.0]),
+                     lambda x: np.array([[2.0 * x[0], 2.0 * x[1]]]))
+    curve = trace(circle, [1.0, 0.0], direction=[0.0, 1.0],
+                  options=Options(fold_coordinates=(1,)), events=box_events(lower={0: -0.02}))
+    folds = curve.special("fold")
+    assert len(folds) == 1 and np.allclose(folds[0].x, [0.0, 1.0], atol=1e-10)
