@@ -93,8 +93,11 @@ class Options:
         :func:`continuation.problem.probe_jacobian`); a Jacobian that is not the residual's
         derivative ends the run with ``Status.JACOBIAN_MISMATCH`` before it traces (a wrong
         Jacobian still lets Newton converge onto the curve, but tilts the tangents, and so
-        the folds and branch points, and collapses the steps). Turn it off for a residual
-        that is not differentiable at the start.
+        the folds and branch points, and collapses the steps). The same check runs at every
+        located fold and branch point, and where a run ended at ``max_steps`` with its steps
+        collapsed: a Jacobian wrong there only fails the run there, with its partial curve
+        (:func:`continuation.special.jacobian_mismatch`). Turn it off for a residual that is
+        not differentiable there.
     raise_on_failure : bool
         Raise :class:`continuation.ContinuationError` (carrying the partial
         curve) when the run ends with a failure status.

@@ -18,14 +18,17 @@ import numpy as np
 from .bifurcation import branch_tangent_pair
 from .corrector import Correction, correct
 from .events import Event
+from .linalg import all_finite
 from .locate import Located, locate_zero, refine_branch_point
 from .node import LocateError, Node, StepUnresolved, event_value
 from .predictor import arc_length, hermite
-from .result import SpecialKind, SpecialPoint
+from .problem import probe_jacobian
+from .result import SpecialKind, SpecialPoint, Status
 from .run import Run
 from .scan import StepScan
 
 __all__ = ["Found", "add_step", "append_end", "drop_unresolved_folds", "fold_inconsistency",
+           "jacobian_mismatch",
            "scan_step"]
 
 #: components of a singular start's tangent at most this large are taken as zero
@@ -287,6 +290,36 @@ def fold_inconsistency(run: Run) -> str:
         if turns > folds:
             return (f"the points turn {turns} times in {run.problem.coordinate_name(i)} but "
                     f"{folds} folds were located: a fold was missed; lower Options.ds_max")
+    return ""
+
+
+def jacobian_mismatch(run: Run, at_end: bool = False) -> str:
+    """A message if the problem's Jacobian is not the residual's derivative at a located fold
+    or branch point (or, with ``at_end``, at the curve's last point), else ``""``.
+
+    The check at the start (``Options.check_jacobian``) cannot see a Jacobian wrong only away
+    from it; there Newton still converges onto the curve, but the tangents tilt, and the folds
+    and branch points, zeros of the tangent's components and of ``det [H'; t^T]``, are located
+    where they are not (``1e-3`` off for an error of ``1e-3``, with an accuracy of ``1e-12``).
+    The same probe (:func:`continuation.problem.probe_jacobian`: one Jacobian and 2 residuals,
+    6 if in doubt) runs at each such point, and at the end of a run whose steps had collapsed
+    (the other sign of a wrong Jacobian). Not without ``check_jacobian``, nor for a problem
+    with no Jacobian of its own.
+    """
+    if not run.options.check_jacobian or run.problem.jacobian is None or not run.x:
+        return ""
+    points = [(p.name, p.x) for p in run.special
+              if p.kind in (SpecialKind.FOLD, SpecialKind.BRANCH_POINT)]
+    if at_end:
+        points.append(("the last point, where the steps had collapsed", run.x[-1]))
+    for name, x in points:
+        J = run.evaluator.jacobian(x)
+        mismatch = probe_jacobian(run.evaluator, x, J) if all_finite(J) else None
+        if mismatch is not None:
+            return (f"{Status.JACOBIAN_MISMATCH.value} at {name} x={run.problem.describe(x)}: "
+                    f"{mismatch}: the special points located with it are not where they are "
+                    "reported. Check the Jacobian with continuation.check_jacobian(problem, "
+                    "None, x); Options(check_jacobian=False) skips this check")
     return ""
 
 

@@ -23,7 +23,13 @@ from .predictor import arc_length, extrapolate, hermite
 from .problem import Evaluator, Problem, as_vector, probe_jacobian
 from .result import Curve, SpecialKind, SpecialPoint, Status
 from .run import Run
-from .special import add_step, drop_unresolved_folds, fold_inconsistency, scan_step
+from .special import (
+    add_step,
+    drop_unresolved_folds,
+    fold_inconsistency,
+    jacobian_mismatch,
+    scan_step,
+)
 
 __all__ = ["follow", "trace"]
 
@@ -283,10 +289,13 @@ class _Stepper:
         if self.status is None:
             return False
         drop_unresolved_folds(self.run)
-        if not self.status.failed:
+        if not self.status.failed:  # (a Jacobian is checked where the steps collapsed too)
+            creeping = self.status is Status.MAX_STEPS and self.ds < CREEPING * self.longest
             inconsistency = fold_inconsistency(self.run)
-            if inconsistency:
-                self.status, self.message = Status.INCONSISTENT, inconsistency
+            mismatch = "" if inconsistency else jacobian_mismatch(self.run, creeping)
+            if inconsistency or mismatch:
+                self.status = Status.INCONSISTENT if inconsistency else Status.JACOBIAN_MISMATCH
+                self.message = inconsistency or mismatch
         return True
 
     def step(self) -> None:

@@ -16,8 +16,9 @@ Every state is written in one unknown, the load-share root
 
 with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Double rolling
 reduces to one equation :math:`P(w) = 0` (a rational function, a quartic over ``1 + w``:
-:func:`double_rolling_state`) that is strictly increasing, so it has exactly one root, found by bracketing (Chandrupatla's method,
-:func:`~groove_model.model.roots.chandrupatla`), never by Newton from a guess. Rolling
+:func:`double_rolling_state`) that is strictly increasing, so it has exactly one root, found
+by bracketing (Chandrupatla's method, :func:`~groove_model.model.roots.chandrupatla`), never
+by Newton from a guess. Rolling
 sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force
 ratio, ``upsilon`` and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``,
 ``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms of one sign or a difference

@@ -250,3 +250,35 @@ def test_long_steps_are_not_called_collapsed():
     curve = trace(circle, [1.0, 0.0],
                   options=Options(ds=1.0, ds_max=1e7, max_steps=10, detect_closed=False))
     assert curve.message == "reached the maximum number of steps (10)"
+
+
+def _cubic_with_a_jacobian_error(size: float) -> Problem:
+    """``u^3 - u - lambda`` with a Jacobian off by ``size (u + 2)^2``: right at the start
+    ``u = -2``, where the run's first check looks, wrong at the folds (``u = -+1/sqrt 3``)."""
+    return Problem(lambda x: np.array([x[1] ** 3 - x[1] - x[0]]),
+                   lambda x: np.array([[-1.0, 3.0 * x[1] ** 2 - 1.0 + size * (x[1] + 2.0) ** 2]]))
+
+
+def test_a_jacobian_wrong_away_from_the_start_fails_at_the_folds_it_moved():
+    # the folds were reported 6e-4 off (u = -0.57677 for -0.57735) with an accuracy of 5e-13,
+    # and the run a success
+    from continuation import box_events
+
+    stop = box_events(upper={1: 2.0})
+    curve = trace(_cubic_with_a_jacobian_error(1e-3), [-6.0, -2.0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0,)), events=stop)
+    assert curve.status is Status.JACOBIAN_MISMATCH and curve.status.failed
+    assert "at fold x[0]" in curve.message and "not where they are reported" in curve.message
+    unchecked = trace(_cubic_with_a_jacobian_error(1e-3), [-6.0, -2.0], direction=[1.0, 0.0],
+                      options=Options(fold_coordinates=(0,), check_jacobian=False), events=stop)
+    assert unchecked.status is Status.TERMINAL_EVENT  # the check is the option's
+
+
+def test_a_jacobian_wrong_where_the_steps_collapse_fails_there():
+    # with a larger error the steps collapsed and the run ended MAX_STEPS, not failed, part way
+    from continuation import box_events
+
+    curve = trace(_cubic_with_a_jacobian_error(0.1), [-6.0, -2.0], direction=[1.0, 0.0],
+                  options=Options(fold_coordinates=(0,)), events=box_events(upper={1: 2.0}))
+    assert curve.status is Status.JACOBIAN_MISMATCH, curve.message
+    assert "at the last point, where the steps had collapsed" in curve.message
