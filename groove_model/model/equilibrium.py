@@ -18,9 +18,9 @@ with ``w = 1`` the symmetric state and ``w = 0`` the edge ``delta = gamma``. Dou
 reduces to one equation :math:`P(w) = 0` (a rational function, a quartic over ``1 + w``:
 :func:`double_rolling_state`) that is strictly increasing, so it has exactly one root, found
 by bracketing (Chandrupatla's method, :func:`~groove_model.model.roots.chandrupatla`), never
-by Newton from a guess. Rolling
-sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and ``1 - w``, every angle, force
-ratio, ``upsilon`` and slip is a short algebraic expression in ``sin gamma``, ``cos gamma``,
+by Newton from a guess. Rolling sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and
+``1 - w``, every angle, force ratio, ``upsilon`` and slip is a short algebraic expression in
+``sin gamma``, ``cos gamma``,
 ``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms of one sign or a difference
 that vanishes only where the physical quantity itself does (``upsilon`` on the no-roll lines,
 ``d_L`` at the regime boundary, ``cos beta_R`` at ``beta_R = pi/2``).
