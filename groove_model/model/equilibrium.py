@@ -20,10 +20,10 @@ reduces to one equation :math:`P(w) = 0` (a rational function, a quartic over ``
 by bracketing (Chandrupatla's method, :func:`~groove_model.model.roots.chandrupatla`), never
 by Newton from a guess. Rolling sliding gives ``w^3 = mu/k`` in closed form. Given ``w`` and
 ``1 - w``, every angle, force ratio, ``upsilon`` and slip is a short algebraic expression in
-``sin gamma``, ``cos gamma``,
-``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms of one sign or a difference
-that vanishes only where the physical quantity itself does (``upsilon`` on the no-roll lines,
-``d_L`` at the regime boundary, ``cos beta_R`` at ``beta_R = pi/2``).
+``sin gamma``, ``cos gamma``, ``w`` and ``1 - w`` (:func:`_kinematics`), each a sum of terms
+of one sign or a difference that vanishes only where the physical quantity itself does
+(``upsilon`` on the no-roll lines, ``d_L`` at the regime boundary, ``cos beta_R`` at
+``beta_R = pi/2``).
 
 No formula subtracts nearly equal angles or cosines, and ratios of small sines are formed
 before they can underflow, so the same expressions hold from the corners of the domain
