@@ -28,8 +28,7 @@ from .run import Run
 from .scan import StepScan
 
 __all__ = ["Found", "add_step", "append_end", "drop_unresolved_folds", "fold_inconsistency",
-           "jacobian_mismatch",
-           "scan_step"]
+           "jacobian_mismatch", "scan_step"]
 
 #: components of a singular start's tangent at most this large are taken as zero
 BRANCH_TANGENT_NOISE = 1e-7
