@@ -96,8 +96,8 @@ class Options:
         the folds and branch points, and collapses the steps). The same check runs at every
         located fold and branch point, and where a run ended at ``max_steps`` with its steps
         collapsed: a Jacobian wrong there only fails the run there, with its partial curve
-        (:func:`continuation.special.jacobian_mismatch`). Turn it off for a residual that is
-        not differentiable there.
+        (:func:`continuation.special.jacobian_at_special_points`). Turn it off for a residual
+        that is not differentiable there.
     raise_on_failure : bool
         Raise :class:`continuation.ContinuationError` (carrying the partial
         curve) when the run ends with a failure status.

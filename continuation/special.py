@@ -28,7 +28,7 @@ from .run import Run
 from .scan import StepScan
 
 __all__ = ["Found", "add_step", "append_end", "drop_unresolved_folds", "fold_inconsistency",
-           "jacobian_mismatch", "scan_step"]
+           "jacobian_at_special_points", "scan_step"]
 
 #: components of a singular start's tangent at most this large are taken as zero
 BRANCH_TANGENT_NOISE = 1e-7
@@ -292,7 +292,7 @@ def fold_inconsistency(run: Run) -> str:
     return ""
 
 
-def jacobian_mismatch(run: Run, at_end: bool = False) -> str:
+def jacobian_at_special_points(run: Run, at_end: bool = False) -> str:
     """A message if the problem's Jacobian is not the residual's derivative at a located fold
     or branch point (or, with ``at_end``, at the curve's last point), else ``""``.
 

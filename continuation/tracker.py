@@ -27,7 +27,7 @@ from .special import (
     add_step,
     drop_unresolved_folds,
     fold_inconsistency,
-    jacobian_mismatch,
+    jacobian_at_special_points,
     scan_step,
 )
 
@@ -292,7 +292,7 @@ class _Stepper:
         if not self.status.failed:  # (a Jacobian is checked where the steps collapsed too)
             creeping = self.status is Status.MAX_STEPS and self.ds < CREEPING * self.longest
             inconsistency = fold_inconsistency(self.run)
-            mismatch = "" if inconsistency else jacobian_mismatch(self.run, creeping)
+            mismatch = "" if inconsistency else jacobian_at_special_points(self.run, creeping)
             if inconsistency or mismatch:
                 self.status = Status.INCONSISTENT if inconsistency else Status.JACOBIAN_MISMATCH
                 self.message = inconsistency or mismatch
